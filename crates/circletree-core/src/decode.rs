@@ -1,0 +1,102 @@
+//! From a stored value back to geometry: circles on the grid to coordinates, rings rebuilt with
+//! [`crate::reconstruct`], stroked to a chord tolerance (WKB) or kept as true arcs (curved WKT).
+
+use crate::error::{Error, Result};
+use crate::format::{Circle, CircleTree};
+use crate::geometry::{Kind, Polygon, Pt};
+use crate::reconstruct::{ring_wkt, stroke_ring};
+
+/// Grid steps to coordinates: `q × mantissa / 10^k` in one correctly rounded operation.
+pub fn scale(ct: &CircleTree) -> impl Fn(i64) -> f64 {
+    let m = ct.grid.mantissa as f64;
+    let e = ct.grid.exp as i32;
+    let p = 10f64.powi(e.abs());
+    move |q: i64| {
+        let v = q as f64 * m;
+        if e >= 0 {
+            v * p
+        } else {
+            v / p
+        }
+    }
+}
+
+/// A ring's circles as `(x, y, ρ)` coordinates.
+pub fn ring_circles(ct: &CircleTree, ring: &[Circle]) -> Vec<[f64; 3]> {
+    let f = scale(ct);
+    ring.iter().map(|c| [f(c.x), f(c.y), f(c.r)]).collect()
+}
+
+/// Check an arc tolerance (`None` means the grid step).
+pub fn arc_tolerance(ct: &CircleTree, tol: Option<f64>) -> Result<f64> {
+    match tol {
+        None => Ok(ct.grid_f64()),
+        Some(t) if t.is_finite() && t > 0.0 => Ok(t),
+        Some(t) => Err(Error::InvalidParameter {
+            name: "arc_tolerance",
+            value: t.to_string(),
+            range: "a positive, finite length",
+        }),
+    }
+}
+
+/// Rebuild every ring, arcs stroked so no chord is farther than `tol` from its arc.
+/// Degenerate rings are padded to the 4 points WKB readers demand (they stay invalid).
+pub fn polygons(ct: &CircleTree, tol: f64) -> Vec<Polygon> {
+    ct.parts
+        .iter()
+        .map(|part| {
+            part.iter()
+                .map(|ring| {
+                    let mut pts: Vec<Pt> = stroke_ring(&ring_circles(ct, ring), tol);
+                    while !pts.is_empty() && pts.len() < 3 {
+                        pts.push(pts[pts.len() - 1]);
+                    }
+                    pts
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The rebuilt geometry as ISO WKB.
+pub fn to_wkb(ct: &CircleTree, tol: Option<f64>) -> Result<Vec<u8>> {
+    let tol = arc_tolerance(ct, tol)?;
+    Ok(crate::wkb::write(ct.kind, &polygons(ct, tol)))
+}
+
+/// The rebuilt geometry with true arcs: `CURVEPOLYGON` or `MULTISURFACE` WKT.
+pub fn to_curved_wkt(ct: &CircleTree) -> String {
+    let mut s = String::new();
+    let poly = |s: &mut String, part: &Vec<Vec<Circle>>| {
+        s.push_str("CURVEPOLYGON(");
+        for (i, ring) in part.iter().enumerate() {
+            if i > 0 {
+                s.push(',');
+            }
+            ring_wkt(&ring_circles(ct, ring), s);
+        }
+        s.push(')');
+    };
+    match ct.kind {
+        Kind::Polygon => match ct.parts.first() {
+            None => s.push_str("CURVEPOLYGON EMPTY"),
+            Some(p) => poly(&mut s, p),
+        },
+        Kind::MultiPolygon => {
+            if ct.parts.is_empty() {
+                s.push_str("MULTISURFACE EMPTY");
+            } else {
+                s.push_str("MULTISURFACE(");
+                for (i, p) in ct.parts.iter().enumerate() {
+                    if i > 0 {
+                        s.push(',');
+                    }
+                    poly(&mut s, p);
+                }
+                s.push(')');
+            }
+        }
+    }
+    s
+}

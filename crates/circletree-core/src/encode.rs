@@ -1,0 +1,646 @@
+//! The encoder: the paper's method (sections 3.1-3.5) followed by a closed loop that the paper
+//! did not have.
+//!
+//! Per ring: candidate circles ([`crate::medial`]), filtered and mapped to runs of edges
+//! ([`crate::filter`]), Douglas-Peucker points as zero-radius circles where no circle covers the
+//! boundary ([`crate::douglas_peucker`]), everything ordered along the ring by the first vertex it
+//! stands for. Then, for the whole geometry at once:
+//!
+//! 1. quantize the circles to the grid and rebuild every ring exactly as `ct_decode` will
+//!    ([`crate::reconstruct`], arcs stroked to the grid step);
+//! 2. measure the continuous Hausdorff distance between each rebuilt ring and its original, both
+//!    ways, with R-trees and a Lipschitz bound on each segment (no sampling gaps), against
+//!    `max_error − grid` (so the true arcs are within `max_error` too);
+//! 3. check validity ([`crate::validity`], stricter than `ST_IsValid`);
+//! 4. where a span between two consecutive circles fails, add an original vertex inside it as a
+//!    zero-radius circle (counted as *repaired*); a span with no vertex left loses its circle.
+//!
+//! The loop ends because each round adds a vertex or removes a circle; its end point, every vertex
+//! kept, is the quantized original. If even that fails (two rings closer than the grid step), the
+//! grid is refined tenfold, twice at most. The result is valid and within `max_error`.
+
+use crate::decimal::Decimal;
+use crate::error::{Error, Result};
+use crate::format::{Circle, CircleTree, Params, MAX_STEPS};
+use crate::geometry::{dist, orient, Pt, Shape};
+use crate::reconstruct::{ring_spans, stroke_spans};
+use crate::validity::{problems, RingRef};
+use crate::{douglas_peucker, filter, medial};
+use rstar::primitives::{GeomWithData, Line};
+use rstar::{PointDistance, RTree};
+
+/// Encoding parameters, in the units of the geometry's SRID.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Options {
+    /// Smallest circle radius kept.
+    pub min_radius: f64,
+    /// Overlap allowed between two circles of the same side, 0..1.
+    pub overlap: f64,
+    /// Douglas-Peucker tolerance for zero-radius circles; `None`: none.
+    pub dp_tolerance: Option<f64>,
+    /// Hausdorff bound; `None`: `max(min_radius, dp_tolerance)`.
+    pub max_error: Option<f64>,
+}
+
+/// What the encoder did, beyond the value itself.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Report {
+    /// Z or M values were dropped.
+    pub dropped_zm: bool,
+    /// Circles kept by the paper's filter, before Douglas-Peucker and repair.
+    pub filtered_circles: usize,
+    /// Zero-radius circles from Douglas-Peucker.
+    pub dp_points: usize,
+    /// Rounds of the repair loop.
+    pub rounds: usize,
+}
+
+fn positive(name: &'static str, v: f64) -> Result<f64> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(Error::InvalidParameter {
+            name,
+            value: v.to_string(),
+            range: "a positive, finite length",
+        })
+    }
+}
+
+fn decimal(name: &'static str, v: f64) -> Result<Decimal> {
+    Decimal::from_f64(v).ok_or(Error::InvalidParameter {
+        name,
+        value: v.to_string(),
+        range: "representable",
+    })
+}
+
+impl Options {
+    /// Check the ranges; returns `max_error` resolved.
+    pub fn check(&self) -> Result<f64> {
+        positive("min_radius", self.min_radius)?;
+        if !(self.overlap.is_finite() && (0.0..=1.0).contains(&self.overlap)) {
+            return Err(Error::InvalidParameter {
+                name: "overlap",
+                value: self.overlap.to_string(),
+                range: "between 0 and 1",
+            });
+        }
+        if let Some(d) = self.dp_tolerance {
+            positive("dp_tolerance", d)?;
+        }
+        match self.max_error {
+            Some(m) => positive("max_error", m),
+            None => Ok(self.min_radius.max(self.dp_tolerance.unwrap_or(0.0))),
+        }
+    }
+}
+
+/// The largest of 1, 2, 5 × 10^k not above `limit`.
+pub fn nice_grid(limit: f64) -> Option<Decimal> {
+    let k = limit.log10().floor() as i32;
+    for m in [5i64, 2, 1] {
+        let d = Decimal::new(m, k)?;
+        if d.to_f64() <= limit {
+            return Some(d);
+        }
+    }
+    Decimal::new(5, k - 1)
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Entry {
+    c: Pt,
+    r: f64,
+    anchor: usize,
+    repaired: bool,
+}
+
+struct RingState {
+    pts: Vec<Pt>,
+    part: usize,
+    index: usize,
+    orig: RTree<GeomWithData<Line<[f64; 2]>, u32>>,
+    entries: Vec<Entry>,
+    circles: Vec<Circle>,
+    recon: Vec<Pt>,
+    span_of: Vec<u32>,
+    vdist: Vec<f64>,
+    dirty: bool,
+}
+
+fn seg_tree(pts: &[Pt], ids: Option<&[u32]>) -> RTree<GeomWithData<Line<[f64; 2]>, u32>> {
+    let n = pts.len();
+    RTree::bulk_load(
+        (0..n)
+            .map(|i| {
+                GeomWithData::new(
+                    Line::new(pts[i], pts[(i + 1) % n]),
+                    ids.map_or(i as u32, |s| s[i]),
+                )
+            })
+            .collect(),
+    )
+}
+
+fn nearest(tree: &RTree<GeomWithData<Line<[f64; 2]>, u32>>, p: Pt) -> f64 {
+    tree.nearest_neighbor(&p)
+        .map_or(f64::INFINITY, |g| g.geom().distance_2(&p).sqrt())
+}
+
+/// Largest distance from segment `a-b` to the set indexed by `tree`, decided against `target`:
+/// `Err(point)` where it exceeds it. Bisection with the bound d(x) ≤ (d(a) + d(b) + |ab|) / 2.
+fn segment_within(
+    tree: &RTree<GeomWithData<Line<[f64; 2]>, u32>>,
+    a: Pt,
+    b: Pt,
+    da: f64,
+    db: f64,
+    target: f64,
+) -> bool {
+    let mut stack = vec![(a, b, da, db, 0u32)];
+    while let Some((a, b, da, db, depth)) = stack.pop() {
+        if da > target || db > target {
+            return false;
+        }
+        let len = dist(a, b);
+        if (da + db + len) / 2.0 <= target || depth >= 16 {
+            continue;
+        }
+        let m = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
+        let dm = nearest(tree, m);
+        stack.push((a, m, da, dm, depth + 1));
+        stack.push((m, b, dm, db, depth + 1));
+    }
+    true
+}
+
+fn span_of_vertex(entries: &[Entry], v: usize) -> usize {
+    let k = entries.partition_point(|e| e.anchor <= v);
+    if k == 0 {
+        entries.len() - 1
+    } else {
+        k - 1
+    }
+}
+
+enum Outcome {
+    Done(Vec<RingState>, usize),
+    FinerGrid,
+}
+
+/// Encode WKB (Polygon or MultiPolygon) into a circletree value.
+pub fn encode(
+    wkb: &[u8],
+    srid: i32,
+    opts: &Options,
+    interrupt: &mut dyn FnMut(),
+) -> Result<(CircleTree, Report)> {
+    let max_error = opts.check()?;
+    let input = crate::wkb::read(wkb)?;
+    let mut shape = input.shape;
+    orient(&mut shape);
+    let mut report = Report {
+        dropped_zm: input.dropped_zm,
+        ..Report::default()
+    };
+    let params = Params {
+        min_radius: decimal("min_radius", opts.min_radius)?,
+        overlap: decimal("overlap", opts.overlap)?,
+        dp_tolerance: opts
+            .dp_tolerance
+            .map(|d| decimal("dp_tolerance", d))
+            .transpose()?,
+        max_error: decimal("max_error", max_error)?,
+    };
+    let Some(mut grid) = nice_grid(max_error / 10.0) else {
+        return Err(Error::InvalidParameter {
+            name: "max_error",
+            value: max_error.to_string(),
+            range: "between 1e-11 and 1e13",
+        });
+    };
+    let bbox = shape.bbox();
+    let magnitude = bbox.map_or(0.0, |b| b.iter().fold(0.0f64, |m, v| m.max(v.abs())));
+    for _attempt in 0..3 {
+        let g = grid.to_f64();
+        if magnitude / g > MAX_STEPS as f64 / 4.0 {
+            break;
+        }
+        match encode_with_grid(&shape, opts, max_error, g, interrupt, &mut report)? {
+            Outcome::Done(rings, repaired) => {
+                let q = |v: f64| (v / g).round() as i64;
+                let mut parts: Vec<Vec<Vec<Circle>>> = vec![Vec::new(); shape.parts.len()];
+                for r in rings {
+                    parts[r.part].push(r.circles);
+                }
+                let ct = CircleTree {
+                    srid,
+                    kind: shape.kind,
+                    grid,
+                    params,
+                    vertices: shape.npoints() as u64,
+                    wkb_bytes: wkb.len() as u64,
+                    repaired: repaired as u64,
+                    bbox: bbox.map(|b| {
+                        [
+                            (b[0] / g).floor() as i64,
+                            (b[1] / g).floor() as i64,
+                            (b[2] / g).ceil() as i64,
+                            (b[3] / g).ceil() as i64,
+                        ]
+                    }),
+                    parts,
+                };
+                let _ = q;
+                ct.validate()?;
+                return Ok((ct, report));
+            }
+            Outcome::FinerGrid => {
+                grid = Decimal::new(grid.mantissa, grid.exp as i32 - 1).unwrap_or(grid);
+            }
+        }
+    }
+    Err(Error::Unencodable(format!(
+        "{max_error}: the polygon does not stay valid on a grid of {grid} (rings closer than the grid step?)"
+    )))
+}
+
+fn initial_entries(
+    ring: &[Pt],
+    opts: &Options,
+    max_error: f64,
+    interrupt: &mut dyn FnMut(),
+    report: &mut Report,
+) -> Vec<Entry> {
+    let n = ring.len();
+    let cands = medial::candidates(ring, interrupt);
+    let runs = filter::map_runs(ring, &cands, opts.min_radius, max_error / 2.0);
+    interrupt();
+    let kept = filter::select(n, runs, opts.overlap);
+    report.filtered_circles += kept.len();
+    let mut entries: Vec<Entry> = kept
+        .iter()
+        .map(|m| Entry {
+            c: m.c,
+            r: m.r,
+            anchor: m.start,
+            repaired: false,
+        })
+        .collect();
+    if let Some(dp) = opts.dp_tolerance {
+        // covered[v]: vertex v lies strictly inside a kept run
+        let mut covered = vec![false; n];
+        for m in &kept {
+            for k in 1..m.len {
+                covered[(m.start + k) % n] = true;
+            }
+        }
+        for v in douglas_peucker::keep(ring, dp) {
+            if !covered[v] {
+                entries.push(Entry {
+                    c: ring[v],
+                    r: 0.0,
+                    anchor: v,
+                    repaired: false,
+                });
+                report.dp_points += 1;
+            }
+        }
+    }
+    if entries.iter().filter(|e| e.r == 0.0).count()
+        + 3 * entries.iter().filter(|e| e.r != 0.0).count()
+        < 3
+    {
+        for v in [0, n / 3, 2 * n / 3] {
+            entries.push(Entry {
+                c: ring[v],
+                r: 0.0,
+                anchor: v,
+                repaired: true,
+            });
+        }
+    }
+    sort_entries(&mut entries);
+    entries
+}
+
+fn sort_entries(entries: &mut Vec<Entry>) {
+    entries.sort_by(|a, b| {
+        a.anchor
+            .cmp(&b.anchor)
+            .then((a.r != 0.0).cmp(&(b.r != 0.0)))
+    });
+    entries.dedup_by(|b, a| a.anchor == b.anchor && a.r == 0.0 && b.r == 0.0);
+}
+
+fn encode_with_grid(
+    shape: &Shape,
+    opts: &Options,
+    max_error: f64,
+    g: f64,
+    interrupt: &mut dyn FnMut(),
+    report: &mut Report,
+) -> Result<Outcome> {
+    let target = max_error - g;
+    let mut rings: Vec<RingState> = Vec::new();
+    report.filtered_circles = 0;
+    report.dp_points = 0;
+    for (pi, part) in shape.parts.iter().enumerate() {
+        for (ri, ring) in part.iter().enumerate() {
+            let entries = initial_entries(ring, opts, max_error, interrupt, report);
+            rings.push(RingState {
+                pts: ring.clone(),
+                part: pi,
+                index: ri,
+                orig: seg_tree(ring, None),
+                entries,
+                circles: vec![],
+                recon: vec![],
+                span_of: vec![],
+                vdist: vec![],
+                dirty: true,
+            });
+        }
+    }
+    let q = |v: f64| (v / g).round() as i64;
+    let unq = |k: i64| k as f64 * g;
+    let mut round = 0;
+    loop {
+        round += 1;
+        report.rounds = round;
+        interrupt();
+        let mut failing: Vec<Vec<usize>> = vec![Vec::new(); rings.len()];
+        for (k, st) in rings.iter_mut().enumerate() {
+            if !st.dirty {
+                continue;
+            }
+            st.dirty = false;
+            st.circles = st
+                .entries
+                .iter()
+                .map(|e| Circle {
+                    x: q(e.c[0]),
+                    y: q(e.c[1]),
+                    r: q(e.r),
+                })
+                .collect();
+            let fc: Vec<[f64; 3]> = st
+                .circles
+                .iter()
+                .map(|c| [unq(c.x), unq(c.y), unq(c.r)])
+                .collect();
+            let spans = ring_spans(&fc);
+            let (mut pts, mut ids) = (Vec::new(), Vec::new());
+            stroke_spans(&spans, g, &mut pts, &mut ids);
+            // drop repeated points, as the decoder does
+            let mut rp: Vec<Pt> = Vec::with_capacity(pts.len());
+            let mut ri: Vec<u32> = Vec::with_capacity(pts.len());
+            for (p, id) in pts.into_iter().zip(ids) {
+                if rp.last() != Some(&p) {
+                    rp.push(p);
+                    ri.push(id);
+                }
+            }
+            while rp.len() > 1 && rp.first() == rp.last() {
+                rp.pop();
+                ri.pop();
+            }
+            st.recon = rp;
+            st.span_of = ri;
+            // Hausdorff, both ways
+            let n = st.pts.len();
+            let rtree = seg_tree(&st.recon, Some(&st.span_of));
+            st.vdist = st.pts.iter().map(|&p| nearest(&rtree, p)).collect();
+            for v in 0..n {
+                let w = (v + 1) % n;
+                if !segment_within(
+                    &rtree,
+                    st.pts[v],
+                    st.pts[w],
+                    st.vdist[v],
+                    st.vdist[w],
+                    target,
+                ) {
+                    failing[k].push(span_of_vertex(&st.entries, v));
+                }
+            }
+            let m = st.recon.len();
+            let rd: Vec<f64> = st.recon.iter().map(|&p| nearest(&st.orig, p)).collect();
+            for i in 0..m {
+                let j = (i + 1) % m;
+                if !segment_within(&st.orig, st.recon[i], st.recon[j], rd[i], rd[j], target) {
+                    failing[k].push(st.span_of[i] as usize);
+                }
+            }
+        }
+        interrupt();
+        let refs: Vec<RingRef> = rings
+            .iter()
+            .map(|r| RingRef {
+                part: r.part,
+                ring: r.index,
+                pts: &r.recon,
+            })
+            .collect();
+        for (k, seg) in problems(&refs, interrupt) {
+            if seg == usize::MAX {
+                failing[k].extend(0..rings[k].entries.len());
+            } else if let Some(&s) = rings[k].span_of.get(seg) {
+                failing[k].push(s as usize);
+            }
+        }
+        if failing.iter().all(Vec::is_empty) {
+            let repaired = rings
+                .iter()
+                .flat_map(|r| r.entries.iter())
+                .filter(|e| e.repaired)
+                .count();
+            return Ok(Outcome::Done(rings, repaired));
+        }
+        let hurry = round > 24;
+        for (k, mut spans) in failing.into_iter().enumerate() {
+            if spans.is_empty() {
+                continue;
+            }
+            spans.sort_unstable();
+            spans.dedup();
+            let st = &mut rings[k];
+            if !repair(st, &spans, target, hurry) {
+                return Ok(Outcome::FinerGrid);
+            }
+            st.dirty = true;
+        }
+    }
+}
+
+/// Repair failing spans of one ring. `false` when a span has nothing left to add.
+fn repair(st: &mut RingState, spans: &[usize], target: f64, hurry: bool) -> bool {
+    let n = st.pts.len();
+    let m = st.entries.len();
+    let mut remove = vec![false; m];
+    let mut add: Vec<Entry> = Vec::new();
+    let point = |v: usize| Entry {
+        c: st.pts[v],
+        r: 0.0,
+        anchor: v,
+        repaired: true,
+    };
+    for &i in spans {
+        if i >= m {
+            continue;
+        }
+        let a = st.entries[i].anchor;
+        let b = if i + 1 < m {
+            st.entries[i + 1].anchor
+        } else {
+            st.entries[0].anchor + n
+        };
+        let interior: Vec<usize> = (a + 1..b).map(|v| v % n).collect();
+        if interior.is_empty() {
+            let j = (i + 1) % m;
+            if st.entries[i].r != 0.0 {
+                remove[i] = true;
+                add.push(point(a));
+            } else if st.entries[j].r != 0.0 {
+                remove[j] = true;
+                add.push(point(st.entries[j].anchor));
+            } else if m < n && a == b % n && m == 1 {
+                add.extend([point((a + n / 3) % n), point((a + 2 * n / 3) % n)]);
+            } else {
+                return false;
+            }
+            continue;
+        }
+        if hurry {
+            add.extend(interior.iter().map(|&v| point(v)));
+            for j in [i, (i + 1) % m] {
+                if st.entries[j].r != 0.0 {
+                    remove[j] = true;
+                    add.push(point(st.entries[j].anchor));
+                }
+            }
+            continue;
+        }
+        let best = interior
+            .iter()
+            .copied()
+            .max_by(|&x, &y| st.vdist[x].total_cmp(&st.vdist[y]));
+        let v = match best {
+            Some(v) if st.vdist[v] > target * 0.5 => v,
+            _ => interior[interior.len() / 2],
+        };
+        add.push(point(v));
+    }
+    let mut next: Vec<Entry> = st
+        .entries
+        .iter()
+        .zip(&remove)
+        .filter(|(_, &r)| !r)
+        .map(|(e, _)| *e)
+        .collect();
+    next.extend(add);
+    sort_entries(&mut next);
+    st.entries = next;
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Kind;
+
+    fn wkb_of(parts: Vec<Vec<Vec<Pt>>>) -> Vec<u8> {
+        crate::wkb::write(Kind::Polygon, &parts)
+    }
+
+    fn opts(min_radius: f64, dp: Option<f64>) -> Options {
+        Options {
+            min_radius,
+            overlap: 0.4,
+            dp_tolerance: dp,
+            max_error: None,
+        }
+    }
+
+    #[test]
+    fn grid_is_a_nice_tenth() {
+        assert_eq!(nice_grid(1.0).unwrap().to_string(), "1");
+        assert_eq!(nice_grid(0.5).unwrap().to_string(), "0.5");
+        assert_eq!(nice_grid(2.5).unwrap().to_string(), "2");
+        assert_eq!(nice_grid(0.99).unwrap().to_string(), "0.5");
+    }
+
+    #[test]
+    fn square_is_four_points() {
+        let sq = vec![vec![vec![
+            [0.0, 0.0],
+            [100.0, 0.0],
+            [100.0, 100.0],
+            [0.0, 100.0],
+        ]]];
+        let (ct, _) = encode(&wkb_of(sq), 0, &opts(5.0, Some(1.0)), &mut || {}).unwrap();
+        let ring = &ct.parts[0][0];
+        assert_eq!(ring.len(), 4, "{ring:?}");
+        assert!(ring.iter().all(|c| c.r == 0));
+    }
+
+    #[test]
+    fn buffered_disc_is_one_circle() {
+        // ST_Buffer(point, 100, 8): 32 vertices
+        let disc: Vec<Pt> = (0..32)
+            .map(|i| {
+                let t = i as f64 / 32.0 * std::f64::consts::TAU;
+                [500000.0 + 100.0 * t.cos(), 6000000.0 + 100.0 * t.sin()]
+            })
+            .collect();
+        let (ct, _) = encode(
+            &wkb_of(vec![vec![disc]]),
+            32760,
+            &opts(5.0, None),
+            &mut || {},
+        )
+        .unwrap();
+        let ring = &ct.parts[0][0];
+        assert!(ring.len() <= 2, "{ring:?}");
+        assert!(ring.iter().all(|c| c.r > 0));
+    }
+
+    #[test]
+    fn bad_parameters_name_themselves() {
+        let sq = wkb_of(vec![vec![vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]]]]);
+        let e = encode(&sq, 0, &opts(0.0, None), &mut || {}).unwrap_err();
+        assert!(matches!(
+            e,
+            Error::InvalidParameter {
+                name: "min_radius",
+                ..
+            }
+        ));
+        let e = encode(
+            &sq,
+            0,
+            &Options {
+                overlap: 1.5,
+                ..opts(1.0, None)
+            },
+            &mut || {},
+        )
+        .unwrap_err();
+        assert!(matches!(
+            e,
+            Error::InvalidParameter {
+                name: "overlap",
+                ..
+            }
+        ));
+        let e = encode(&sq, 0, &opts(1.0, Some(-1.0)), &mut || {}).unwrap_err();
+        assert!(matches!(
+            e,
+            Error::InvalidParameter {
+                name: "dp_tolerance",
+                ..
+            }
+        ));
+    }
+}

@@ -1,0 +1,214 @@
+//! Filtering the candidate circles (paper section 3.3), in the paper's order:
+//!
+//! 1. drop circles with `|r| < min_radius`;
+//! 2. map to each circle the runs of consecutive ring edges tangential to it within the threshold
+//!    (both end points and the middle of each edge within `tol` of the circle, the ring turning
+//!    around the centre in the circle's direction), after the paper's averaging step (the radius
+//!    becomes the mean distance of the run's vertices); drop runs of fewer than two edges;
+//! 3. order the runs by length, longer first (then smaller radius first, which keeps detail);
+//! 4. keep a run when it covers at least two edges no kept run covers yet and its circle neither
+//!    overlaps a kept circle of the same side beyond `overlap` (penetration depth over the smaller
+//!    diameter), nor contains or is contained in one, nor overlaps any circle of the other side
+//!    (internal and external circles must stay apart for their tangent to exist). A circle whose
+//!    boundary runs come back later in the ring is kept once per run (paper figure 6).
+//!
+//! Internal circles touching no boundary cannot survive step 2. Cost: O(c·k + c log c) for c
+//! candidates and runs of k edges, with an R-tree over the kept circles.
+
+use crate::geometry::{dist, Pt};
+use crate::medial::Candidate;
+use rstar::primitives::GeomWithData;
+use rstar::{RTree, AABB};
+
+/// A kept circle and the run of ring edges it stands for: edges `start .. start + len` (modulo n).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Mapped {
+    /// Centre.
+    pub c: Pt,
+    /// Signed radius.
+    pub r: f64,
+    /// First vertex of the run.
+    pub start: usize,
+    /// Number of edges in the run.
+    pub len: usize,
+}
+
+fn on_circle(p: Pt, c: Pt, r: f64, tol: f64) -> bool {
+    (dist(p, c) - r).abs() <= tol
+}
+
+/// The run of edges around vertex `seed` that hug circle `(c, ρ)` within `tol`.
+fn run_at(ring: &[Pt], c: Pt, rho: f64, seed: usize, tol: f64) -> (usize, usize) {
+    let n = ring.len();
+    let r = rho.abs();
+    let sign = rho.signum();
+    let edge_ok = |i: usize| -> bool {
+        let (a, b) = (ring[i], ring[(i + 1) % n]);
+        let cross = (a[0] - c[0]) * (b[1] - c[1]) - (a[1] - c[1]) * (b[0] - c[0]);
+        cross * sign > 0.0
+            && on_circle(b, c, r, tol)
+            && on_circle(a, c, r, tol)
+            && on_circle([(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0], c, r, tol)
+    };
+    if !on_circle(ring[seed], c, r, tol) {
+        return (seed, 0);
+    }
+    let mut len = 0;
+    let mut angle = 0.0;
+    let mut i = seed;
+    while len < n && edge_ok(i) {
+        angle += sweep(ring[i], ring[(i + 1) % n], c);
+        if angle >= std::f64::consts::PI * 1.9 {
+            break;
+        }
+        len += 1;
+        i = (i + 1) % n;
+    }
+    let mut start = seed;
+    while len < n {
+        let prev = (start + n - 1) % n;
+        if !edge_ok(prev) {
+            break;
+        }
+        angle += sweep(ring[prev], ring[start], c);
+        if angle >= std::f64::consts::PI * 1.9 {
+            break;
+        }
+        start = prev;
+        len += 1;
+    }
+    (start, len)
+}
+
+fn sweep(a: Pt, b: Pt, c: Pt) -> f64 {
+    let (ua, ub) = ([a[0] - c[0], a[1] - c[1]], [b[0] - c[0], b[1] - c[1]]);
+    (ua[0] * ub[1] - ua[1] * ub[0])
+        .atan2(ua[0] * ub[0] + ua[1] * ub[1])
+        .abs()
+}
+
+/// Steps 1-2: runs of at least two edges for each candidate, radius averaged over its run.
+pub fn map_runs(ring: &[Pt], cands: &[Candidate], min_radius: f64, tol: f64) -> Vec<Mapped> {
+    let n = ring.len();
+    let mut out = Vec::new();
+    for cand in cands {
+        if cand.r.abs() < min_radius {
+            continue;
+        }
+        let mut seen: Vec<(usize, usize)> = Vec::with_capacity(3);
+        for &seed in &cand.verts {
+            if seen.iter().any(|&(s, l)| (seed + n - s) % n <= l) {
+                continue;
+            }
+            let (s0, l0) = run_at(ring, cand.c, cand.r, seed, tol);
+            if l0 < 2 {
+                continue;
+            }
+            // The paper's averaging: fit the radius to the run, then map again with it.
+            let mean = (0..=l0)
+                .map(|k| dist(ring[(s0 + k) % n], cand.c))
+                .sum::<f64>()
+                / (l0 + 1) as f64;
+            let rho = mean * cand.r.signum();
+            let (s, l) = run_at(ring, cand.c, rho, seed, tol);
+            let (s, l, rho) = if l >= l0 {
+                (s, l, rho)
+            } else {
+                (s0, l0, cand.r)
+            };
+            if rho.abs() < min_radius || l < 2 {
+                continue;
+            }
+            seen.push((s, l));
+            out.push(Mapped {
+                c: cand.c,
+                r: rho,
+                start: s,
+                len: l,
+            });
+        }
+    }
+    out
+}
+
+/// Steps 3-4: choose the runs that cover the ring, longest first, within the overlap allowance.
+pub fn select(n: usize, mut runs: Vec<Mapped>, overlap: f64) -> Vec<Mapped> {
+    runs.sort_by(|a, b| b.len.cmp(&a.len).then(a.r.abs().total_cmp(&b.r.abs())));
+    let mut covered = vec![false; n];
+    let mut kept: Vec<Mapped> = Vec::new();
+    let mut tree: RTree<GeomWithData<[f64; 2], usize>> = RTree::new();
+    let mut max_r: f64 = 0.0;
+    for m in runs {
+        let new = (0..m.len).filter(|&k| !covered[(m.start + k) % n]).count();
+        if new < 2 {
+            continue;
+        }
+        let r = m.r.abs();
+        let reach = r + max_r;
+        let env = AABB::from_corners(
+            [m.c[0] - reach, m.c[1] - reach],
+            [m.c[0] + reach, m.c[1] + reach],
+        );
+        let clash = tree.locate_in_envelope(&env).any(|g| {
+            let o = kept[g.data];
+            if o.c == m.c && o.r == m.r {
+                return false; // the same circle, another run of it
+            }
+            let ro = o.r.abs();
+            let d = dist(o.c, m.c);
+            let depth = r + ro - d;
+            if depth <= 0.0 {
+                return false;
+            }
+            if o.r.signum() != m.r.signum() || d + r.min(ro) <= r.max(ro) {
+                return true;
+            }
+            depth / (2.0 * r.min(ro)) > overlap
+        });
+        if clash {
+            continue;
+        }
+        for k in 0..m.len {
+            covered[(m.start + k) % n] = true;
+        }
+        tree.insert(GeomWithData::new(m.c, kept.len()));
+        max_r = max_r.max(r);
+        kept.push(m);
+    }
+    kept
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::medial::candidates;
+
+    fn buffer_disc(r: f64, segs_per_quarter: usize) -> Vec<Pt> {
+        let n = 4 * segs_per_quarter;
+        (0..n)
+            .map(|i| {
+                let t = i as f64 / n as f64 * std::f64::consts::TAU;
+                [1000.0 + r * t.cos(), 2000.0 + r * t.sin()]
+            })
+            .collect()
+    }
+
+    #[test]
+    fn disc_maps_to_few_circles() {
+        let ring = buffer_disc(100.0, 8);
+        let c = candidates(&ring, &mut || {});
+        let runs = map_runs(&ring, &c, 5.0, 1.0);
+        let kept = select(ring.len(), runs, 0.4);
+        assert!(!kept.is_empty() && kept.len() <= 2, "{kept:?}");
+        assert!(kept
+            .iter()
+            .all(|m| (m.r - 100.0).abs() < 1.0 && dist(m.c, [1000.0, 2000.0]) < 1.0));
+    }
+
+    #[test]
+    fn min_radius_drops_everything_small() {
+        let ring = buffer_disc(10.0, 8);
+        let c = candidates(&ring, &mut || {});
+        assert!(map_runs(&ring, &c, 11.0, 1.0).is_empty());
+    }
+}

@@ -1,0 +1,471 @@
+//! The stored bytes of a `circletree` value, format version 1. `docs/FORMAT.md` describes it byte
+//! by byte.
+//!
+//! ```text
+//! u8  version (= 1)          u8  kind (3 Polygon, 6 MultiPolygon)
+//! varint srid (zigzag)       decimal grid            (decimal = zigzag varint mantissa, i8 exponent)
+//! decimal min_radius         decimal overlap         option<decimal> dp_tolerance   decimal max_error
+//! varint vertices            varint wkb_bytes        varint repaired
+//! varint nparts              [if nparts > 0: zigzag xmin, zigzag ymin, varint width, varint height]
+//! per part: varint nrings; per ring: varint ncircles; per circle: zigzag dx, zigzag dy, zigzag r
+//! ```
+//! Coordinates are integers on the grid. `dx, dy` are deltas from the previous circle's centre,
+//! running through every ring of every part, starting at `(xmin, ymin)`.
+//!
+//! Decoding trusts no count: a count is checked against the bytes that remain before anything is
+//! allocated for it, every sum is checked for overflow, and every field is range-checked.
+
+use crate::decimal::Decimal;
+use crate::error::{Error, Result};
+use crate::geometry::Kind;
+use serde::de::DeserializeOwned;
+use serde::Serialize;
+
+/// The version byte written by this release.
+pub const FORMAT_VERSION: u8 = 1;
+/// Largest absolute coordinate or radius, in grid steps (keeps `q × grid` exact in f64).
+pub const MAX_STEPS: i64 = 1 << 52;
+
+/// A circle on the grid: centre `(x, y)` and signed radius `r` (`> 0` inside, `< 0` outside,
+/// `0` a boundary point), all in grid steps.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Circle {
+    /// Centre x, grid steps.
+    pub x: i64,
+    /// Centre y, grid steps.
+    pub y: i64,
+    /// Signed radius, grid steps.
+    pub r: i64,
+}
+
+/// The parameters the value was encoded with, as the user gave them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Params {
+    /// Minimum circle radius.
+    pub min_radius: Decimal,
+    /// Allowed overlap between circles, 0..1.
+    pub overlap: Decimal,
+    /// Douglas-Peucker tolerance, if zero-radius DP circles were added.
+    pub dp_tolerance: Option<Decimal>,
+    /// The Hausdorff bound the encoder enforced.
+    pub max_error: Decimal,
+}
+
+/// A decoded `circletree` value.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct CircleTree {
+    /// Spatial reference id (0 = unknown).
+    pub srid: i32,
+    /// Polygon or MultiPolygon.
+    pub kind: Kind,
+    /// Coordinate units per grid step.
+    pub grid: Decimal,
+    /// Encoding parameters.
+    pub params: Params,
+    /// `ST_NPoints` of the original geometry.
+    pub vertices: u64,
+    /// WKB bytes of the original geometry.
+    pub wkb_bytes: u64,
+    /// Zero-radius circles added by the encoder's repair loop (beyond the paper's method).
+    pub repaired: u64,
+    /// Bounding box of the original, grid steps: `[xmin, ymin, xmax, ymax]`; `None` when empty.
+    pub bbox: Option<[i64; 4]>,
+    /// Parts, each a list of rings (shell first), each a list of circles in boundary order.
+    pub parts: Vec<Vec<Vec<Circle>>>,
+}
+
+impl CircleTree {
+    /// Number of circles in all rings.
+    pub fn ncircles(&self) -> usize {
+        self.parts.iter().flatten().map(Vec::len).sum()
+    }
+
+    /// Grid step as a float.
+    pub fn grid_f64(&self) -> f64 {
+        self.grid.to_f64()
+    }
+
+    /// Check every invariant a stored value must satisfy.
+    pub fn validate(&self) -> Result<()> {
+        let bad = |m: String| Err(Error::Corrupt(m));
+        if self.grid.mantissa <= 0 || !(-12..=12).contains(&self.grid.exp) {
+            return bad(format!(
+                "grid {} is not a positive step between 1e-12 and 1e12",
+                self.grid
+            ));
+        }
+        let p = &self.params;
+        if p.min_radius.mantissa <= 0 {
+            return bad(format!("min_radius {} is not positive", p.min_radius));
+        }
+        let ov = p.overlap.to_f64();
+        if !(0.0..=1.0).contains(&ov) {
+            return bad(format!("overlap {} is outside [0, 1]", p.overlap));
+        }
+        if p.dp_tolerance.is_some_and(|d| d.mantissa <= 0) {
+            return bad("dp_tolerance is not positive".into());
+        }
+        if p.max_error.mantissa <= 0 {
+            return bad(format!("max_error {} is not positive", p.max_error));
+        }
+        if self.kind == Kind::Polygon && self.parts.len() > 1 {
+            return bad(format!("a Polygon with {} parts", self.parts.len()));
+        }
+        match (self.parts.is_empty(), self.bbox) {
+            (true, Some(_)) => return bad("an empty value with a bounding box".into()),
+            (false, None) => return bad("a bounding box is missing".into()),
+            (false, Some(b)) if b[0] > b[2] || b[1] > b[3] => {
+                return bad("the bounding box is inverted".into())
+            }
+            _ => {}
+        }
+        if let Some(b) = self.bbox {
+            if b.iter().any(|v| v.abs() > MAX_STEPS) {
+                return bad("the bounding box is out of range".into());
+            }
+        }
+        for (pi, part) in self.parts.iter().enumerate() {
+            if part.is_empty() {
+                return bad(format!("part {} has no ring", pi + 1));
+            }
+            for (ri, ring) in part.iter().enumerate() {
+                let zero = ring.iter().filter(|c| c.r == 0).count();
+                if ring.is_empty() || (zero == ring.len() && ring.len() < 3) {
+                    return bad(format!(
+                        "ring {} of part {} has {} circles, too few for a ring",
+                        ri + 1,
+                        pi + 1,
+                        ring.len()
+                    ));
+                }
+                if ring.iter().any(|c| {
+                    c.x.abs() > MAX_STEPS || c.y.abs() > MAX_STEPS || c.r.abs() > MAX_STEPS
+                }) {
+                    return bad(format!(
+                        "a circle of ring {} of part {} is out of range",
+                        ri + 1,
+                        pi + 1
+                    ));
+                }
+            }
+        }
+        if self.repaired > self.ncircles() as u64 {
+            return bad(format!(
+                "{} repaired circles of {}",
+                self.repaired,
+                self.ncircles()
+            ));
+        }
+        Ok(())
+    }
+
+    /// The stored bytes.
+    ///
+    /// ```
+    /// use circletree_core::format::*;
+    /// use circletree_core::decimal::Decimal;
+    /// use circletree_core::geometry::Kind;
+    /// let d = |s| Decimal::parse(s).unwrap();
+    /// let ct = CircleTree { srid: 32760, kind: Kind::Polygon, grid: d("0.5"),
+    ///   params: Params { min_radius: d("5"), overlap: d("0.4"), dp_tolerance: None, max_error: d("5") },
+    ///   vertices: 5, wkb_bytes: 93, repaired: 0, bbox: Some([0, 0, 20, 20]),
+    ///   parts: vec![vec![vec![Circle { x: 10, y: 10, r: 10 }]]] };
+    /// let bytes = ct.to_bytes();
+    /// assert_eq!(CircleTree::from_bytes(&bytes).unwrap(), ct);
+    /// ```
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let mut w = Writer(Vec::with_capacity(32 + 4 * self.ncircles()));
+        w.0.push(FORMAT_VERSION);
+        w.0.push(self.kind.wkb_code());
+        w.put(&self.srid);
+        for d in [self.grid, self.params.min_radius, self.params.overlap] {
+            w.decimal(d);
+        }
+        w.put(&self.params.dp_tolerance.map(|d| (d.mantissa, d.exp)));
+        w.decimal(self.params.max_error);
+        w.put(&self.vertices);
+        w.put(&self.wkb_bytes);
+        w.put(&self.repaired);
+        w.put(&(self.parts.len() as u64));
+        let mut cur = (0i64, 0i64);
+        if let Some(b) = self.bbox {
+            w.put(&b[0]);
+            w.put(&b[1]);
+            w.put(&((b[2] - b[0]) as u64));
+            w.put(&((b[3] - b[1]) as u64));
+            cur = (b[0], b[1]);
+        }
+        for part in &self.parts {
+            w.put(&(part.len() as u64));
+            for ring in part {
+                w.put(&(ring.len() as u64));
+                for c in ring {
+                    w.put(&(c.x - cur.0));
+                    w.put(&(c.y - cur.1));
+                    w.put(&c.r);
+                    cur = (c.x, c.y);
+                }
+            }
+        }
+        w.0
+    }
+
+    /// Decode and validate stored bytes. Never panics, never trusts a count.
+    pub fn from_bytes(bytes: &[u8]) -> Result<CircleTree> {
+        let mut r = Reader { buf: bytes };
+        let version = r.byte("the format version")?;
+        if version != FORMAT_VERSION {
+            return Err(Error::Corrupt(format!(
+                "format version {version} is not known to this release (it reads version {FORMAT_VERSION})"
+            )));
+        }
+        let code = r.byte("the geometry kind")?;
+        let kind = Kind::from_wkb_code(code)
+            .ok_or_else(|| Error::Corrupt(format!("geometry kind {code} is neither 3 nor 6")))?;
+        let srid: i32 = r.take("the SRID")?;
+        let grid = r.decimal("the grid")?;
+        let min_radius = r.decimal("min_radius")?;
+        let overlap = r.decimal("overlap")?;
+        let dp: Option<(i64, i8)> = r.take("dp_tolerance")?;
+        let dp_tolerance = match dp {
+            Some((m, e)) => Some(
+                Decimal::new(m, e as i32).ok_or_else(|| Error::Corrupt("dp_tolerance".into()))?,
+            ),
+            None => None,
+        };
+        let max_error = r.decimal("max_error")?;
+        let vertices: u64 = r.take("the vertex count")?;
+        let wkb_bytes: u64 = r.take("the WKB size")?;
+        let repaired: u64 = r.take("the repaired count")?;
+        let nparts = r.count("parts", 5)?;
+        let mut bbox = None;
+        let mut cur = (0i64, 0i64);
+        if nparts > 0 {
+            let xmin: i64 = r.take("the bounding box")?;
+            let ymin: i64 = r.take("the bounding box")?;
+            let w: u64 = r.take("the bounding box")?;
+            let h: u64 = r.take("the bounding box")?;
+            let add = |a: i64, b: u64| i64::try_from(b).ok().and_then(|b| a.checked_add(b));
+            let (Some(xmax), Some(ymax)) = (add(xmin, w), add(ymin, h)) else {
+                return Err(Error::Corrupt("the bounding box overflows".into()));
+            };
+            bbox = Some([xmin, ymin, xmax, ymax]);
+            cur = (xmin, ymin);
+        }
+        let mut parts = Vec::with_capacity(nparts);
+        for _ in 0..nparts {
+            let nrings = r.count("rings", 4)?;
+            let mut rings = Vec::with_capacity(nrings);
+            for _ in 0..nrings {
+                let n = r.count("circles", 3)?;
+                let mut ring = Vec::with_capacity(n);
+                for _ in 0..n {
+                    let dx: i64 = r.take("a circle")?;
+                    let dy: i64 = r.take("a circle")?;
+                    let rad: i64 = r.take("a circle")?;
+                    let (Some(x), Some(y)) = (cur.0.checked_add(dx), cur.1.checked_add(dy)) else {
+                        return Err(Error::Corrupt("a circle's coordinates overflow".into()));
+                    };
+                    cur = (x, y);
+                    ring.push(Circle { x, y, r: rad });
+                }
+                rings.push(ring);
+            }
+            parts.push(rings);
+        }
+        if !r.buf.is_empty() {
+            return Err(Error::Corrupt(format!(
+                "{} bytes left over after the last circle",
+                r.buf.len()
+            )));
+        }
+        let ct = CircleTree {
+            srid,
+            kind,
+            grid,
+            params: Params {
+                min_radius,
+                overlap,
+                dp_tolerance,
+                max_error,
+            },
+            vertices,
+            wkb_bytes,
+            repaired,
+            bbox,
+            parts,
+        };
+        ct.validate()?;
+        Ok(ct)
+    }
+}
+
+struct Writer(Vec<u8>);
+
+impl Writer {
+    fn put<T: Serialize + ?Sized>(&mut self, v: &T) {
+        // postcard into a Vec only fails on unsupported serde types, which we never pass.
+        if let Ok(b) = postcard::to_extend(v, std::mem::take(&mut self.0)) {
+            self.0 = b;
+        }
+    }
+    fn decimal(&mut self, d: Decimal) {
+        self.put(&(d.mantissa, d.exp));
+    }
+}
+
+struct Reader<'a> {
+    buf: &'a [u8],
+}
+
+impl<'a> Reader<'a> {
+    fn byte(&mut self, what: &str) -> Result<u8> {
+        let (&b, rest) = self
+            .buf
+            .split_first()
+            .ok_or_else(|| Error::Corrupt(format!("the value ends before {what}")))?;
+        self.buf = rest;
+        Ok(b)
+    }
+    fn take<T: DeserializeOwned>(&mut self, what: &str) -> Result<T> {
+        let (v, rest) = postcard::take_from_bytes::<T>(self.buf)
+            .map_err(|e| Error::Corrupt(format!("cannot read {what}: {e}")))?;
+        self.buf = rest;
+        Ok(v)
+    }
+    fn decimal(&mut self, what: &str) -> Result<Decimal> {
+        let (m, e): (i64, i8) = self.take(what)?;
+        Decimal::new(m, e as i32).ok_or_else(|| Error::Corrupt(format!("{what} is out of range")))
+    }
+    /// A count of items each needing at least `min_bytes`; refused when the bytes left cannot hold them.
+    fn count(&mut self, what: &str, min_bytes: usize) -> Result<usize> {
+        let n: u64 = self.take(what)?;
+        let room = (self.buf.len() / min_bytes) as u64;
+        if n > room {
+            return Err(Error::Corrupt(format!(
+                "the value claims {n} {what} but only {} bytes remain",
+                self.buf.len()
+            )));
+        }
+        Ok(n as usize)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn sample() -> CircleTree {
+        let d = |s| Decimal::parse(s).unwrap();
+        CircleTree {
+            srid: 32760,
+            kind: Kind::MultiPolygon,
+            grid: d("0.5"),
+            params: Params {
+                min_radius: d("5"),
+                overlap: d("0.4"),
+                dp_tolerance: Some(d("10")),
+                max_error: d("10"),
+            },
+            vertices: 2029,
+            wkb_bytes: 32513,
+            repaired: 1,
+            bbox: Some([1_000_000, 12_000_000, 1_000_400, 12_000_300]),
+            parts: vec![
+                vec![vec![
+                    Circle {
+                        x: 1_000_100,
+                        y: 12_000_100,
+                        r: 40,
+                    },
+                    Circle {
+                        x: 1_000_200,
+                        y: 12_000_050,
+                        r: 0,
+                    },
+                    Circle {
+                        x: 1_000_300,
+                        y: 12_000_200,
+                        r: -30,
+                    },
+                ]],
+                vec![vec![Circle {
+                    x: 1_000_390,
+                    y: 12_000_290,
+                    r: 10,
+                }]],
+            ],
+        }
+    }
+
+    #[test]
+    fn round_trip_and_size() {
+        let ct = sample();
+        let b = ct.to_bytes();
+        assert_eq!(CircleTree::from_bytes(&b).unwrap(), ct);
+        // header: 2 + srid 3 + grid 2 + min_radius 2 + overlap 2 + dp 3 + max_error 2 + 2 + 3 + 1
+        //   + nparts 1 + bbox 3 + 4 + 2 + 2 = 34; circles: deltas of a few bytes each
+        assert!(b.len() < 60, "{} bytes", b.len());
+    }
+
+    #[test]
+    fn rejects_lies_and_leftovers() {
+        let ct = sample();
+        let mut b = ct.to_bytes();
+        b.push(0);
+        assert!(
+            matches!(CircleTree::from_bytes(&b), Err(Error::Corrupt(m)) if m.contains("left over"))
+        );
+        let mut v = ct.to_bytes();
+        v[0] = 2;
+        assert!(
+            matches!(CircleTree::from_bytes(&v), Err(Error::Corrupt(m)) if m.contains("version 2"))
+        );
+        assert!(matches!(
+            CircleTree::from_bytes(&[]),
+            Err(Error::Corrupt(_))
+        ));
+    }
+
+    #[test]
+    fn huge_count_does_not_allocate() {
+        // A polygon claiming 2^32 circles in its one ring.
+        let d = |s| Decimal::parse(s).unwrap();
+        let mut w = Writer(vec![1, 3]);
+        w.put(&0i32);
+        for x in [d("1"), d("5"), d("0.4")] {
+            w.decimal(x);
+        }
+        w.put(&None::<(i64, i8)>);
+        w.decimal(d("5"));
+        for _ in 0..3 {
+            w.put(&0u64);
+        }
+        w.put(&1u64);
+        for _ in 0..4 {
+            w.put(&0u64);
+        }
+        w.put(&1u64);
+        w.put(&(1u64 << 32));
+        let err = CircleTree::from_bytes(&w.0).unwrap_err();
+        assert!(matches!(err, Error::Corrupt(m) if m.contains("claims 4294967296 circles")));
+    }
+
+    proptest! {
+        #[test]
+        fn arbitrary_bytes_never_panic(bytes in proptest::collection::vec(any::<u8>(), 0..200)) {
+            let _ = CircleTree::from_bytes(&bytes);
+        }
+
+        #[test]
+        fn mutated_values_never_panic(pos in 0usize..60, val in any::<u8>()) {
+            let mut b = sample().to_bytes();
+            let i = pos % b.len();
+            b[i] = val;
+            if let Ok(ct) = CircleTree::from_bytes(&b) {
+                prop_assert_eq!(CircleTree::from_bytes(&ct.to_bytes()).unwrap(), ct);
+            }
+        }
+    }
+}

@@ -1,0 +1,24 @@
+//! circletree-core: store polygons as ordered circles `(x, y, ±r)` and rebuild them from tangents
+//! and arcs. Pure Rust, no PostgreSQL: the extension's glue only moves bytes and maps errors.
+//!
+//! One module per step: [`wkb`] (input/output), [`medial`] (Voronoi circles, paper 3.1),
+//! [`filter`] (3.3), [`douglas_peucker`] (3.5), [`reconstruct`] (tangents and arcs, 3.5),
+//! [`validity`], [`encode`] (the pipeline and its closed repair loop), [`format`] (the stored
+//! bytes), [`text`] (the text form), [`metrics`] (sliver area, Hausdorff).
+#![forbid(unsafe_code)]
+
+pub mod decimal;
+pub mod decode;
+pub mod douglas_peucker;
+pub mod encode;
+pub mod error;
+pub mod filter;
+pub mod format;
+pub mod geometry;
+pub mod medial;
+pub mod reconstruct;
+pub mod text;
+pub mod validity;
+pub mod wkb;
+
+pub use error::{Error, Result};

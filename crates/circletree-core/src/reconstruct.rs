@@ -1,0 +1,410 @@
+//! Rebuild a ring from its ordered circles (paper section 3.5): a tangent between each pair of
+//! consecutive circles (and from the last to the first), joined at each circle by its arc or, where
+//! the two tangents cross, by their intersection.
+//!
+//! A circle `(c, ρ)` has the boundary on its right when `ρ > 0` (the circle lies inside the polygon,
+//! the ring turns counter-clockwise around it), on its left when `ρ < 0`, and passes through `c`
+//! when `ρ = 0`. With unit left normal `n` of a directed line, a circle touches the line on the
+//! correct side exactly when `n·(c − p) = ρ` for the line's points `p`. For circles A and B this
+//! gives one equation for all four internal/external cases of the paper:
+//! `n·(c_B − c_A) = ρ_B − ρ_A`, so with `u` the unit vector from A to B, `v` its left normal,
+//! `a = (ρ_B − ρ_A)/|c_B − c_A|`: `n = a·u + √(1−a²)·v`, and the tangent points are `c − ρ·n`.
+//! When `|a| > 1` (one circle inside the other) no tangent exists; `a` is clamped, the result is
+//! still a closed ring, and the encoder's check rejects it. Decoding never fails.
+//!
+//! At a circle the incoming tangent arrives at `p_in` and the outgoing one leaves at `p_out`.
+//! Walking the circle in its own direction from `p_in` to `p_out` sweeps `θ`. When `|θ| ≤ 3π/2`
+//! the join is that arc; otherwise the boundary turns the other way by less than a right angle
+//! and the join is the intersection of the two tangent lines (a corner).
+//!
+//! Cost: O(m) for m circles, plus the stroked points.
+
+use crate::geometry::Pt;
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
+
+/// A piece of a rebuilt ring.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Seg {
+    /// A straight segment.
+    Line(Pt, Pt),
+    /// A circular arc: centre, radius (> 0), start angle, signed sweep (> 0 counter-clockwise).
+    Arc {
+        /// Centre.
+        c: Pt,
+        /// Radius.
+        r: f64,
+        /// Start angle, radians.
+        a0: f64,
+        /// Signed sweep, radians.
+        sweep: f64,
+        /// Exact start point (where the incoming tangent ends).
+        from: Pt,
+        /// Exact end point (where the outgoing tangent starts).
+        to: Pt,
+    },
+}
+
+impl Seg {
+    /// Start point.
+    pub fn start(&self) -> Pt {
+        match *self {
+            Seg::Line(a, _) => a,
+            Seg::Arc { from, .. } => from,
+        }
+    }
+    /// End point.
+    pub fn end(&self) -> Pt {
+        match *self {
+            Seg::Line(_, b) => b,
+            Seg::Arc { to, .. } => to,
+        }
+    }
+    /// Point at the middle of an arc (the middle point of a CIRCULARSTRING).
+    pub fn mid(&self) -> Pt {
+        match *self {
+            Seg::Line(a, b) => [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0],
+            Seg::Arc {
+                c, r, a0, sweep, ..
+            } => {
+                let t = a0 + sweep / 2.0;
+                [c[0] + r * t.cos(), c[1] + r * t.sin()]
+            }
+        }
+    }
+}
+
+/// Most segments one arc is stroked into.
+pub const MAX_ARC_SEGMENTS: usize = 4096;
+
+/// A rebuilt ring, as spans: span `i` is the join at circle `i` then the tangent to circle `i+1`.
+pub type Spans = Vec<Vec<Seg>>;
+
+/// Tangent from circle A to circle B: start point on A, end point on B, unit direction.
+pub fn tangent(ca: Pt, ra: f64, cb: Pt, rb: f64) -> (Pt, Pt, Pt) {
+    let d = [cb[0] - ca[0], cb[1] - ca[1]];
+    let l = d[0].hypot(d[1]);
+    let (u, a) = if l > 0.0 {
+        ([d[0] / l, d[1] / l], ((rb - ra) / l).clamp(-1.0, 1.0))
+    } else {
+        ([1.0, 0.0], (rb - ra).signum())
+    };
+    let b = (1.0 - a * a).max(0.0).sqrt();
+    let v = [-u[1], u[0]];
+    let n = [a * u[0] + b * v[0], a * u[1] + b * v[1]];
+    let dir = [b * u[0] - a * v[0], b * u[1] - a * v[1]];
+    let s = [ca[0] - ra * n[0], ca[1] - ra * n[1]];
+    let e = [cb[0] - rb * n[0], cb[1] - rb * n[1]];
+    (s, e, dir)
+}
+
+fn line_intersection(p: Pt, d: Pt, q: Pt, e: Pt) -> Option<Pt> {
+    let den = d[0] * e[1] - d[1] * e[0];
+    if den.abs() < 1e-12 {
+        return None;
+    }
+    let t = ((q[0] - p[0]) * e[1] - (q[1] - p[1]) * e[0]) / den;
+    Some([p[0] + t * d[0], p[1] + t * d[1]])
+}
+
+/// Rebuild one ring from circles `(x, y, ρ)` in boundary order.
+pub fn ring_spans(circles: &[[f64; 3]]) -> Spans {
+    let m = circles.len();
+    if m == 0 {
+        return vec![];
+    }
+    if m == 1 {
+        let [x, y, r] = circles[0];
+        if r == 0.0 {
+            return vec![vec![Seg::Line([x, y], [x, y])]];
+        }
+        let p = [x + r.abs(), y];
+        return vec![vec![Seg::Arc {
+            c: [x, y],
+            r: r.abs(),
+            a0: 0.0,
+            sweep: TAU * r.signum(),
+            from: p,
+            to: p,
+        }]];
+    }
+    let tans: Vec<(Pt, Pt, Pt)> = (0..m)
+        .map(|i| {
+            let a = circles[i];
+            let b = circles[(i + 1) % m];
+            tangent([a[0], a[1]], a[2], [b[0], b[1]], b[2])
+        })
+        .collect();
+    // Join at circle i: (point where the incoming tangent ends, point where the outgoing starts, arc)
+    let mut p_in = vec![[0.0; 2]; m];
+    let mut p_out = vec![[0.0; 2]; m];
+    let mut arcs: Vec<Option<Seg>> = vec![None; m];
+    for i in 0..m {
+        let (_, e_prev, d_prev) = tans[(i + m - 1) % m];
+        let (s_next, _, d_next) = tans[i];
+        let [x, y, r] = circles[i];
+        p_in[i] = e_prev;
+        p_out[i] = s_next;
+        if r == 0.0 {
+            continue;
+        }
+        let c = [x, y];
+        let ang_in = (e_prev[1] - y).atan2(e_prev[0] - x);
+        let ang_out = (s_next[1] - y).atan2(s_next[0] - x);
+        let mut theta = (ang_out - ang_in).rem_euclid(TAU);
+        if r < 0.0 {
+            theta = -((ang_in - ang_out).rem_euclid(TAU));
+        }
+        if theta.abs() <= PI + FRAC_PI_2 {
+            if theta != 0.0 {
+                arcs[i] = Some(Seg::Arc {
+                    c,
+                    r: r.abs(),
+                    a0: ang_in,
+                    sweep: theta,
+                    from: e_prev,
+                    to: s_next,
+                });
+            }
+        } else if let Some(xp) = line_intersection(e_prev, d_prev, s_next, d_next) {
+            p_in[i] = xp;
+            p_out[i] = xp;
+        }
+    }
+    (0..m)
+        .map(|i| {
+            let mut span = Vec::with_capacity(2);
+            if let Some(a) = arcs[i] {
+                span.push(a);
+            } else if p_in[i] != p_out[i] {
+                span.push(Seg::Line(p_in[i], p_out[i]));
+            }
+            span.push(Seg::Line(p_out[i], p_in[(i + 1) % m]));
+            span
+        })
+        .collect()
+}
+
+/// Number of chords for an arc so that no chord is farther than `tol` from the arc.
+pub fn arc_segments(r: f64, sweep: f64, tol: f64) -> usize {
+    let quarter = (sweep.abs() / FRAC_PI_2).ceil().max(1.0);
+    let k = if tol > 0.0 && r > tol {
+        let step = 2.0 * (1.0 - tol / r).acos();
+        (sweep.abs() / step).ceil()
+    } else {
+        1.0
+    };
+    (k.max(quarter) as usize).clamp(1, MAX_ARC_SEGMENTS)
+}
+
+/// Stroke spans into ring points (open ring), recording for each point its span.
+pub fn stroke_spans(spans: &Spans, tol: f64, pts: &mut Vec<Pt>, span_of: &mut Vec<u32>) {
+    for (i, span) in spans.iter().enumerate() {
+        for seg in span {
+            match *seg {
+                Seg::Line(a, _) => {
+                    pts.push(a);
+                    span_of.push(i as u32);
+                }
+                Seg::Arc {
+                    c,
+                    r,
+                    a0,
+                    sweep,
+                    from,
+                    ..
+                } => {
+                    let k = arc_segments(r, sweep, tol);
+                    pts.push(from);
+                    span_of.push(i as u32);
+                    for j in 1..k {
+                        let t = a0 + sweep * (j as f64) / (k as f64);
+                        pts.push([c[0] + r * t.cos(), c[1] + r * t.sin()]);
+                        span_of.push(i as u32);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Stroke one ring: open ring points with consecutive repeats removed.
+pub fn stroke_ring(circles: &[[f64; 3]], tol: f64) -> Vec<Pt> {
+    let spans = ring_spans(circles);
+    let mut pts = Vec::new();
+    let mut ids = Vec::new();
+    stroke_spans(&spans, tol, &mut pts, &mut ids);
+    pts.dedup();
+    while pts.len() > 1 && pts.first() == pts.last() {
+        pts.pop();
+    }
+    pts
+}
+
+/// The ring as WKT `COMPOUNDCURVE(...)` with true arcs.
+pub fn ring_wkt(circles: &[[f64; 3]], out: &mut String) {
+    use std::fmt::Write;
+    let segs: Vec<Seg> = ring_spans(circles).into_iter().flatten().collect();
+    let pt = |out: &mut String, p: Pt| {
+        let _ = write!(out, "{} {}", p[0], p[1]);
+    };
+    out.push_str("COMPOUNDCURVE(");
+    let mut first = true;
+    let mut line: Vec<Pt> = Vec::new();
+    let flush = |out: &mut String, line: &mut Vec<Pt>, first: &mut bool| {
+        if line.len() >= 2 {
+            if !*first {
+                out.push(',');
+            }
+            out.push('(');
+            for (k, p) in line.iter().enumerate() {
+                if k > 0 {
+                    out.push(',');
+                }
+                pt(out, *p);
+            }
+            out.push(')');
+            *first = false;
+        }
+        line.clear();
+    };
+    for seg in &segs {
+        match *seg {
+            Seg::Line(a, b) => {
+                if a == b {
+                    continue;
+                }
+                if line.is_empty() {
+                    line.push(a);
+                }
+                line.push(b);
+            }
+            Seg::Arc { .. } => {
+                let end = line.last().copied();
+                flush(out, &mut line, &mut first);
+                if !first {
+                    out.push(',');
+                }
+                first = false;
+                out.push_str("CIRCULARSTRING(");
+                pt(out, end.unwrap_or(seg.start()));
+                out.push(',');
+                if seg_is_full(seg) {
+                    if let Seg::Arc { c, r, a0, .. } = *seg {
+                        // the point opposite the start
+                        pt(
+                            out,
+                            [c[0] + r * (a0 + PI).cos(), c[1] + r * (a0 + PI).sin()],
+                        );
+                    }
+                } else {
+                    pt(out, seg.mid());
+                }
+                out.push(',');
+                pt(out, seg.end());
+                out.push(')');
+                line.push(seg.end());
+            }
+        }
+    }
+    // Close on the first point exactly.
+    if let Some(first_pt) = segs
+        .iter()
+        .find(|s| !matches!(s, Seg::Line(a, b) if a == b))
+        .map(|s| s.start())
+    {
+        let n = line.len();
+        if n >= 2 {
+            line[n - 1] = first_pt;
+        }
+    }
+    flush(out, &mut line, &mut first);
+    out.push(')');
+}
+
+fn seg_is_full(seg: &Seg) -> bool {
+    matches!(*seg, Seg::Arc { sweep, .. } if sweep.abs() >= TAU - 1e-12)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: Pt, b: Pt) -> bool {
+        (a[0] - b[0]).abs() < 1e-9 && (a[1] - b[1]).abs() < 1e-9
+    }
+
+    #[test]
+    fn four_tangent_cases() {
+        // internal/internal: below both, going +x
+        let (s, e, d) = tangent([0.0, 0.0], 1.0, [4.0, 0.0], 1.0);
+        assert!(close(s, [0.0, -1.0]) && close(e, [4.0, -1.0]) && close(d, [1.0, 0.0]));
+        // external/external: above both
+        let (s, e, _) = tangent([0.0, 0.0], -1.0, [4.0, 0.0], -1.0);
+        assert!(close(s, [0.0, 1.0]) && close(e, [4.0, 1.0]));
+        // internal/external: crosses between them
+        let (s, e, d) = tangent([0.0, 0.0], 1.0, [4.0, 0.0], -1.0);
+        assert!(close(s, [0.5, -(0.75f64).sqrt()]) && close(e, [3.5, (0.75f64).sqrt()]));
+        assert!((d[0] * (e[1] - s[1]) - d[1] * (e[0] - s[0])).abs() < 1e-9);
+        // external/internal, and zero radius is a point
+        let (s, e, _) = tangent([0.0, 0.0], -1.0, [4.0, 0.0], 1.0);
+        assert!(close(s, [0.5, (0.75f64).sqrt()]) && close(e, [3.5, -(0.75f64).sqrt()]));
+        let (s, e, _) = tangent([0.0, 0.0], 0.0, [4.0, 0.0], 0.0);
+        assert!(close(s, [0.0, 0.0]) && close(e, [4.0, 0.0]));
+    }
+
+    #[test]
+    fn square_of_points_is_the_square() {
+        let pts = stroke_ring(
+            &[
+                [0.0, 0.0, 0.0],
+                [10.0, 0.0, 0.0],
+                [10.0, 10.0, 0.0],
+                [0.0, 10.0, 0.0],
+            ],
+            0.1,
+        );
+        assert_eq!(
+            pts,
+            vec![[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]]
+        );
+    }
+
+    #[test]
+    fn one_circle_is_a_disc_and_stadium_has_two_arcs() {
+        let pts = stroke_ring(&[[0.0, 0.0, 5.0]], 0.01);
+        assert_eq!(pts.len(), 50);
+        assert!(pts.iter().all(|p| (p[0].hypot(p[1]) - 5.0).abs() < 1e-9));
+        let area = crate::geometry::signed_area(&pts);
+        assert!((area - 25.0 * PI).abs() < 0.5, "{area}");
+        // Two internal circles: a stadium, area = pi r^2 + 2r * d
+        let st = stroke_ring(&[[0.0, 0.0, 1.0], [10.0, 0.0, 1.0]], 1e-4);
+        let a = crate::geometry::signed_area(&st);
+        assert!((a - (PI + 20.0)).abs() < 1e-3, "{a}");
+    }
+
+    #[test]
+    fn concave_corner_uses_tangent_intersection() {
+        // An L-shaped bay: points and one internal circle whose tangents cross -> corner, not a loop.
+        let c = [
+            [0.0, 0.0, 0.0],
+            [20.0, 0.0, 0.0],
+            [20.0, 20.0, 0.0],
+            [10.0, 10.0, 2.0],
+            [0.0, 20.0, 0.0],
+        ];
+        let spans = ring_spans(&c);
+        assert!(spans[3].iter().all(|s| matches!(s, Seg::Line(..))));
+        let pts = stroke_ring(&c, 0.01);
+        assert!(crate::geometry::signed_area(&pts) > 0.0);
+    }
+
+    #[test]
+    fn curved_wkt_for_a_disc() {
+        let mut s = String::new();
+        ring_wkt(&[[0.0, 0.0, 5.0]], &mut s);
+        assert!(
+            s.starts_with("COMPOUNDCURVE(CIRCULARSTRING(5 0,-5 0.0") && s.ends_with(",5 0))"),
+            "{s}"
+        );
+    }
+}

@@ -1,0 +1,266 @@
+//! Is a set of rings a valid (Multi)Polygon boundary? No two segments may cross or touch except
+//! consecutive ones at their shared end point, and those may not fold back onto each other; every
+//! ring must enclose area; every hole must lie inside its shell and no part's shell inside another
+//! part. This is stricter than OGC validity (which lets rings touch at a point), so what passes
+//! here passes `ST_IsValid`. Segment pairs are found with an R-tree: O(n log n).
+
+use crate::geometry::{signed_area, Pt};
+use robust::{orient2d, Coord};
+use rstar::primitives::{GeomWithData, Rectangle};
+use rstar::{RTree, RTreeObject};
+
+/// A ring to check: its part, its index in the part (0 = shell) and its open points.
+pub struct RingRef<'a> {
+    /// Part index.
+    pub part: usize,
+    /// 0 for the shell, then holes.
+    pub ring: usize,
+    /// Open ring points.
+    pub pts: &'a [Pt],
+}
+
+fn o(a: Pt, b: Pt, c: Pt) -> f64 {
+    orient2d(
+        Coord { x: a[0], y: a[1] },
+        Coord { x: b[0], y: b[1] },
+        Coord { x: c[0], y: c[1] },
+    )
+}
+
+fn on_seg(a: Pt, b: Pt, p: Pt) -> bool {
+    p[0] >= a[0].min(b[0])
+        && p[0] <= a[0].max(b[0])
+        && p[1] >= a[1].min(b[1])
+        && p[1] <= a[1].max(b[1])
+}
+
+/// Do closed segments `a-b` and `c-d` share any point?
+pub fn segments_touch(a: Pt, b: Pt, c: Pt, d: Pt) -> bool {
+    let (d1, d2, d3, d4) = (o(c, d, a), o(c, d, b), o(a, b, c), o(a, b, d));
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+    {
+        return true;
+    }
+    (d1 == 0.0 && on_seg(c, d, a))
+        || (d2 == 0.0 && on_seg(c, d, b))
+        || (d3 == 0.0 && on_seg(a, b, c))
+        || (d4 == 0.0 && on_seg(a, b, d))
+}
+
+/// Crossing-number point-in-ring test.
+pub fn point_in_ring(p: Pt, ring: &[Pt]) -> bool {
+    let n = ring.len();
+    let mut inside = false;
+    let mut j = n.wrapping_sub(1);
+    for i in 0..n {
+        let (a, b) = (ring[i], ring[j]);
+        if (a[1] > p[1]) != (b[1] > p[1])
+            && p[0] < (b[0] - a[0]) * (p[1] - a[1]) / (b[1] - a[1]) + a[0]
+        {
+            inside = !inside;
+        }
+        j = i;
+    }
+    inside
+}
+
+/// Problems found: `(ring index in the input slice, segment index)`; `usize::MAX` as the segment
+/// means the whole ring (degenerate, or misplaced).
+pub fn problems(rings: &[RingRef], interrupt: &mut dyn FnMut()) -> Vec<(usize, usize)> {
+    let mut bad = Vec::new();
+    let mut items = Vec::new();
+    for (k, r) in rings.iter().enumerate() {
+        let n = r.pts.len();
+        if n < 3 || signed_area(r.pts).abs() == 0.0 {
+            bad.push((k, usize::MAX));
+            continue;
+        }
+        for i in 0..n {
+            let (a, b) = (r.pts[i], r.pts[(i + 1) % n]);
+            items.push(GeomWithData::new(Rectangle::from_corners(a, b), (k, i)));
+        }
+    }
+    interrupt();
+    let tree = RTree::bulk_load(items);
+    for (count, item) in tree.iter().enumerate() {
+        if count % 8192 == 0 {
+            interrupt();
+        }
+        let (k, i) = item.data;
+        let pts = rings[k].pts;
+        let n = pts.len();
+        let (a, b) = (pts[i], pts[(i + 1) % n]);
+        for other in tree.locate_in_envelope_intersecting(&item.geom().envelope()) {
+            let (k2, j) = other.data;
+            if (k2, j) <= (k, i) {
+                continue;
+            }
+            let p2 = rings[k2].pts;
+            let n2 = p2.len();
+            let (c, d) = (p2[j], p2[(j + 1) % n2]);
+            let adjacent = k == k2 && (j == (i + 1) % n || i == (j + 1) % n);
+            if adjacent {
+                // Consecutive segments share one end point; they may not fold back along each other.
+                let (shared, x, y) = if j == (i + 1) % n {
+                    (b, a, d)
+                } else {
+                    (a, b, c)
+                };
+                if o(x, shared, y) == 0.0 {
+                    let dot = (x[0] - shared[0]) * (y[0] - shared[0])
+                        + (x[1] - shared[1]) * (y[1] - shared[1]);
+                    if dot > 0.0 {
+                        bad.push((k, i));
+                        bad.push((k2, j));
+                    }
+                }
+                if n == 3 && k == k2 {
+                    continue;
+                }
+                continue;
+            }
+            if segments_touch(a, b, c, d) {
+                bad.push((k, i));
+                bad.push((k2, j));
+            }
+        }
+    }
+    if !bad.is_empty() {
+        return bad;
+    }
+    // No crossings: check nesting. Holes inside their shell; a part's shell outside the other parts.
+    let shell_of = |part: usize| rings.iter().position(|r| r.part == part && r.ring == 0);
+    for (k, r) in rings.iter().enumerate() {
+        if r.ring > 0 {
+            if let Some(s) = shell_of(r.part) {
+                if !point_in_ring(r.pts[0], rings[s].pts) {
+                    bad.push((k, usize::MAX));
+                }
+            }
+        }
+    }
+    let shells: Vec<usize> = (0..rings.len()).filter(|&k| rings[k].ring == 0).collect();
+    if shells.len() > 1 {
+        let env: Vec<[f64; 4]> = shells
+            .iter()
+            .map(|&k| {
+                let p = rings[k].pts;
+                p.iter()
+                    .fold([f64::MAX, f64::MAX, f64::MIN, f64::MIN], |b, q| {
+                        [
+                            b[0].min(q[0]),
+                            b[1].min(q[1]),
+                            b[2].max(q[0]),
+                            b[3].max(q[1]),
+                        ]
+                    })
+            })
+            .collect();
+        for (x, &kx) in shells.iter().enumerate() {
+            let p = rings[kx].pts[0];
+            for (y, &ky) in shells.iter().enumerate() {
+                let e = env[y];
+                if x == y || p[0] < e[0] || p[0] > e[2] || p[1] < e[1] || p[1] > e[3] {
+                    continue;
+                }
+                if point_in_ring(p, rings[ky].pts) {
+                    // inside another part's shell: fine only inside one of that part's holes
+                    let part = rings[ky].part;
+                    let in_hole = rings
+                        .iter()
+                        .any(|h| h.part == part && h.ring > 0 && point_in_ring(p, h.pts));
+                    if !in_hole {
+                        bad.push((kx, usize::MAX));
+                    }
+                }
+            }
+        }
+    }
+    bad
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bow_tie_and_spike_are_invalid() {
+        let sq = [[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]];
+        assert!(problems(
+            &[RingRef {
+                part: 0,
+                ring: 0,
+                pts: &sq
+            }],
+            &mut || {}
+        )
+        .is_empty());
+        let bow = [[0.0, 0.0], [10.0, 10.0], [10.0, 0.0], [0.0, 10.0]];
+        assert!(!problems(
+            &[RingRef {
+                part: 0,
+                ring: 0,
+                pts: &bow
+            }],
+            &mut || {}
+        )
+        .is_empty());
+        let spike = [[0.0, 0.0], [10.0, 0.0], [20.0, 0.0], [5.0, 0.0], [5.0, 5.0]];
+        assert!(!problems(
+            &[RingRef {
+                part: 0,
+                ring: 0,
+                pts: &spike
+            }],
+            &mut || {}
+        )
+        .is_empty());
+    }
+
+    #[test]
+    fn holes_and_parts() {
+        let sq = [[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]];
+        let hole = [[2.0, 2.0], [2.0, 4.0], [4.0, 4.0], [4.0, 2.0]];
+        let outside = [[20.0, 2.0], [20.0, 4.0], [24.0, 4.0], [24.0, 2.0]];
+        let ok = [
+            RingRef {
+                part: 0,
+                ring: 0,
+                pts: &sq,
+            },
+            RingRef {
+                part: 0,
+                ring: 1,
+                pts: &hole,
+            },
+        ];
+        assert!(problems(&ok, &mut || {}).is_empty());
+        let bad = [
+            RingRef {
+                part: 0,
+                ring: 0,
+                pts: &sq,
+            },
+            RingRef {
+                part: 0,
+                ring: 1,
+                pts: &outside,
+            },
+        ];
+        assert_eq!(problems(&bad, &mut || {}), vec![(1, usize::MAX)]);
+        let nested = [
+            RingRef {
+                part: 0,
+                ring: 0,
+                pts: &sq,
+            },
+            RingRef {
+                part: 1,
+                ring: 0,
+                pts: &hole,
+            },
+        ];
+        assert_eq!(problems(&nested, &mut || {}), vec![(1, usize::MAX)]);
+    }
+}

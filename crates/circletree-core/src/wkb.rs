@@ -1,0 +1,226 @@
+//! WKB in and out, through the `wkb` crate (georust).
+//!
+//! Reading accepts ISO WKB and PostGIS EWKB, names any type that is not a Polygon or MultiPolygon,
+//! drops Z and M (and says so), rejects non-finite coordinates, and returns open rings with
+//! repeated points removed. Writing produces ISO WKB (little endian, 2D).
+
+use crate::error::{Error, Result};
+use crate::geometry::{dedup_ring, Kind, Polygon, Ring, Shape};
+use geo_traits::{
+    CoordTrait, GeometryTrait, GeometryType, LineStringTrait, MultiPolygonTrait, PolygonTrait,
+};
+
+/// A geometry read from WKB.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Input {
+    /// The polygon(s), rings open and deduplicated.
+    pub shape: Shape,
+    /// True when the input had Z or M values, which were dropped.
+    pub dropped_zm: bool,
+}
+
+const TYPE_NAMES: [&str; 18] = [
+    "Geometry",
+    "Point",
+    "LineString",
+    "Polygon",
+    "MultiPoint",
+    "MultiLineString",
+    "MultiPolygon",
+    "GeometryCollection",
+    "CircularString",
+    "CompoundCurve",
+    "CurvePolygon",
+    "MultiCurve",
+    "MultiSurface",
+    "Curve",
+    "Surface",
+    "PolyhedralSurface",
+    "TIN",
+    "Triangle",
+];
+
+/// The geometry type code of a WKB header (ISO or EWKB), without dimension flags.
+fn header_type(buf: &[u8]) -> Result<(u32, bool)> {
+    if buf.len() < 5 {
+        return Err(Error::BadWkb(format!(
+            "{} bytes is too short for a WKB header",
+            buf.len()
+        )));
+    }
+    let raw = [buf[1], buf[2], buf[3], buf[4]];
+    let code = match buf[0] {
+        0 => u32::from_be_bytes(raw),
+        1 => u32::from_le_bytes(raw),
+        b => {
+            return Err(Error::BadWkb(format!(
+                "byte order marker {b} is neither 0 nor 1"
+            )))
+        }
+    };
+    let ewkb_zm = code & 0xC000_0000 != 0;
+    let iso = code & 0x0FFF_FFFF;
+    Ok((iso % 1000, ewkb_zm || iso >= 1000))
+}
+
+/// Read a Polygon or MultiPolygon from WKB or EWKB.
+///
+/// ```
+/// let wkb = [1u8, 3, 0, 0, 0, 1, 0, 0, 0, 4, 0, 0, 0,
+///   0,0,0,0,0,0,0,0, 0,0,0,0,0,0,0,0,  0,0,0,0,0,0,240,63, 0,0,0,0,0,0,0,0,
+///   0,0,0,0,0,0,0,0, 0,0,0,0,0,0,240,63, 0,0,0,0,0,0,0,0, 0,0,0,0,0,0,0,0];
+/// let input = circletree_core::wkb::read(&wkb).unwrap();
+/// assert_eq!(input.shape.parts[0][0].len(), 3);
+/// ```
+pub fn read(buf: &[u8]) -> Result<Input> {
+    let (base, has_zm) = header_type(buf)?;
+    if base != 3 && base != 6 {
+        let name = TYPE_NAMES
+            .get(base as usize)
+            .copied()
+            .unwrap_or("an unknown WKB type");
+        return Err(Error::UnsupportedGeometry(name.to_string()));
+    }
+    let geom = ::wkb::reader::read_wkb(buf).map_err(|e| Error::BadWkb(e.to_string()))?;
+    let shape = match geom.as_type() {
+        GeometryType::Polygon(p) => Shape {
+            kind: Kind::Polygon,
+            parts: read_polygon(p)?.into_iter().collect(),
+        },
+        GeometryType::MultiPolygon(mp) => {
+            let mut parts = Vec::with_capacity(mp.num_polygons().min(1 << 16));
+            for p in mp.polygons() {
+                if let Some(poly) = read_polygon(&p)? {
+                    parts.push(poly);
+                }
+            }
+            Shape {
+                kind: Kind::MultiPolygon,
+                parts,
+            }
+        }
+        _ => return Err(Error::BadWkb("unexpected geometry type".into())),
+    };
+    Ok(Input {
+        shape,
+        dropped_zm: has_zm,
+    })
+}
+
+fn read_polygon(p: &impl PolygonTrait<T = f64>) -> Result<Option<Polygon>> {
+    let Some(ext) = p.exterior() else {
+        return Ok(None);
+    };
+    let shell = read_ring(&ext)?;
+    if shell.is_empty() {
+        return Ok(None);
+    }
+    let mut poly = vec![shell];
+    for hole in p.interiors() {
+        let r = read_ring(&hole)?;
+        if !r.is_empty() {
+            poly.push(r);
+        }
+    }
+    Ok(Some(poly))
+}
+
+fn read_ring(ls: &impl LineStringTrait<T = f64>) -> Result<Ring> {
+    let mut ring: Ring = Vec::with_capacity(ls.num_coords());
+    for c in ls.coords() {
+        let (x, y) = (c.x(), c.y());
+        if !x.is_finite() || !y.is_finite() {
+            return Err(Error::NonFinite(format!("{x} {y}")));
+        }
+        ring.push([x, y]);
+    }
+    dedup_ring(&mut ring);
+    Ok(ring)
+}
+
+fn to_geo_polygon(poly: &[Ring]) -> geo::Polygon<f64> {
+    let ls = |r: &Ring| -> geo::LineString<f64> {
+        let mut v: Vec<geo::Coord<f64>> =
+            r.iter().map(|p| geo::Coord { x: p[0], y: p[1] }).collect();
+        if let Some(&f) = v.first() {
+            v.push(f);
+        }
+        geo::LineString(v)
+    };
+    let mut it = poly.iter();
+    let shell = it.next().map(ls).unwrap_or_else(|| geo::LineString(vec![]));
+    geo::Polygon::new(shell, it.map(ls).collect())
+}
+
+/// The shape as a `geo` MultiPolygon (rings closed).
+pub fn to_geo(parts: &[Polygon]) -> geo::MultiPolygon<f64> {
+    geo::MultiPolygon(parts.iter().map(|p| to_geo_polygon(p)).collect())
+}
+
+/// Write rings as ISO WKB (little endian). Rings are given open and written closed.
+pub fn write(kind: Kind, parts: &[Polygon]) -> Vec<u8> {
+    let mut out = Vec::new();
+    let opts = ::wkb::writer::WriteOptions {
+        endianness: ::wkb::Endianness::LittleEndian,
+    };
+    let res = match (kind, parts.first()) {
+        (Kind::Polygon, None) => {
+            out.extend_from_slice(&[1, 3, 0, 0, 0, 0, 0, 0, 0]);
+            Ok(())
+        }
+        (Kind::Polygon, Some(p)) => {
+            ::wkb::writer::write_polygon(&mut out, &to_geo_polygon(p), &opts)
+        }
+        (Kind::MultiPolygon, _) => {
+            ::wkb::writer::write_multi_polygon(&mut out, &to_geo(parts), &opts)
+        }
+    };
+    // Writing into a Vec cannot fail: the writer's only errors are I/O errors.
+    debug_assert!(res.is_ok());
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn round_trip_polygon_with_hole() {
+        let parts = vec![vec![
+            vec![[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]],
+            vec![[2.0, 2.0], [2.0, 4.0], [4.0, 4.0], [4.0, 2.0]],
+        ]];
+        let bytes = write(Kind::Polygon, &parts);
+        assert_eq!(bytes.len(), 9 + 2 * (4 + 5 * 16));
+        let back = read(&bytes).unwrap();
+        assert_eq!(back.shape.parts, parts);
+        assert!(!back.dropped_zm);
+    }
+
+    #[test]
+    fn names_unsupported_types() {
+        let point = [
+            1u8, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+        ];
+        assert_eq!(
+            read(&point),
+            Err(Error::UnsupportedGeometry("Point".into()))
+        );
+        let curve = [1u8, 10, 0, 0, 0, 0, 0, 0, 0];
+        assert_eq!(
+            read(&curve),
+            Err(Error::UnsupportedGeometry("CurvePolygon".into()))
+        );
+        assert!(matches!(read(&[1u8, 3]), Err(Error::BadWkb(_))));
+    }
+
+    #[test]
+    fn empty_round_trips() {
+        let e = write(Kind::Polygon, &[]);
+        assert!(read(&e).unwrap().shape.is_empty());
+        let m = write(Kind::MultiPolygon, &[]);
+        let back = read(&m).unwrap();
+        assert_eq!(back.shape.kind, Kind::MultiPolygon);
+        assert!(back.shape.is_empty());
+    }
+}

@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Runs every test: formatting, clippy (warnings are errors), the core's tests, the #[pg_test]s
+# (as postgres, in a throw-away cluster), then the pg_regress files against the local PostgreSQL 15
+# with PostGIS. Any failure fails the run. Sets the machine up first when needed (scripts/setup.sh).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+source scripts/setup.sh
+
+echo "== cargo fmt --check"
+cargo fmt --all -- --check
+
+echo "== clippy (warnings are errors)"
+cargo clippy --workspace --all-targets --features pg_test -- -D warnings
+
+echo "== core tests"
+cargo test -p circletree-core
+
+echo "== #[pg_test]s"
+pgdata=/tmp/circletree-pgrx-test-pgdata
+as_root rm -rf "$pgdata"
+as_root install -d -o postgres -g postgres "$pgdata"
+# cargo pgrx test needs to write target/ as the invoking user but runs postgres as 'postgres'.
+cargo pgrx test pg15 --runas postgres --pgdata "$pgdata" </dev/null
+
+echo "== pg_regress"
+cargo pgrx install --pg-config "$PG_CONFIG" </dev/null
+out=$(mktemp -d)
+chmod 755 "$out"
+tests=$(cd tests/pg_regress/sql && ls *.sql | sed 's/\.sql$//' | grep -v '^setup$' | sort | tr '\n' ' ')
+if ! "$($PG_CONFIG --pkglibdir)/pgxs/src/test/regress/pg_regress" \
+      --bindir=/usr/lib/postgresql/15/bin --host=/var/run/postgresql --port=5432 \
+      --dbname=circletree_regress --inputdir=tests/pg_regress --outputdir="$out" \
+      setup $tests; then
+  cat "$out/regression.diffs" 2>/dev/null | head -200
+  exit 1
+fi

@@ -1,0 +1,80 @@
+#![allow(unsafe_code)] // the datum layer: pgrx FFI traits and the RECEIVE StringInfo
+//! Binary I/O (`circletree_send` / `circletree_recv`, our own bytes, not CBOR), the validated
+//! casts to and from `bytea`, and byte equality.
+
+use super::CircleTree;
+use pgrx::datum::Internal;
+use pgrx::pg_sys;
+use pgrx::prelude::*;
+
+/// `SEND`: the stored bytes as they are.
+#[pg_extern(immutable, strict, parallel_safe)]
+fn circletree_send(ct: CircleTree) -> Vec<u8> {
+    ct.bytes
+}
+
+/// `RECEIVE`: read the message's remaining bytes and validate them fully.
+#[pg_extern(immutable, strict, parallel_safe)]
+fn circletree_recv(mut internal: Internal) -> CircleTree {
+    // SAFETY: PostgreSQL passes a StringInfo to a type's receive function.
+    let Some(buf) = (unsafe { internal.get_mut::<pg_sys::StringInfoData>() }) else {
+        pgrx::error!("circletree_recv: no message buffer");
+    };
+    let (cursor, len) = (buf.cursor.max(0) as usize, buf.len.max(0) as usize);
+    let bytes: &[u8] = if buf.data.is_null() || cursor >= len {
+        &[]
+    } else {
+        // SAFETY: data holds len bytes; we read [cursor, len).
+        unsafe { std::slice::from_raw_parts((buf.data as *const u8).add(cursor), len - cursor) }
+    };
+    let ct = CircleTree::from_stored(bytes);
+    buf.cursor = buf.len;
+    ct
+}
+
+/// `bytea -> circletree`: validates the bytes (ERROR 22P03 when they are not a circletree).
+#[pg_extern(immutable, strict, parallel_safe)]
+fn circletree_from_bytea(bytes: &[u8]) -> CircleTree {
+    CircleTree::from_stored(bytes)
+}
+
+/// `circletree -> bytea`: the stored bytes.
+#[pg_extern(immutable, strict, parallel_safe)]
+fn circletree_to_bytea(ct: CircleTree) -> Vec<u8> {
+    ct.bytes
+}
+
+/// `=`: same bytes.
+#[pg_extern(immutable, strict, parallel_safe)]
+fn circletree_eq(a: CircleTree, b: CircleTree) -> bool {
+    a.bytes == b.bytes
+}
+
+/// `<>`: different bytes.
+#[pg_extern(immutable, strict, parallel_safe)]
+fn circletree_ne(a: CircleTree, b: CircleTree) -> bool {
+    a.bytes != b.bytes
+}
+
+extension_sql!(
+    r#"
+ALTER TYPE circletree SET (RECEIVE = circletree_recv, SEND = circletree_send);
+-- Stored as EXTERNAL: out of line when large, never pglz-compressed (see docs/FORMAT.md).
+ALTER TYPE circletree SET (STORAGE = external);
+CREATE CAST (circletree AS bytea) WITH FUNCTION circletree_to_bytea(circletree);
+CREATE CAST (bytea AS circletree) WITH FUNCTION circletree_from_bytea(bytea);
+CREATE OPERATOR = (LEFTARG = circletree, RIGHTARG = circletree, PROCEDURE = circletree_eq,
+    COMMUTATOR = =, NEGATOR = <>, RESTRICT = eqsel, JOIN = eqjoinsel);
+CREATE OPERATOR <> (LEFTARG = circletree, RIGHTARG = circletree, PROCEDURE = circletree_ne,
+    COMMUTATOR = <>, NEGATOR = =, RESTRICT = neqsel, JOIN = neqjoinsel);
+"#,
+    name = "circletree_binary_io",
+    requires = [
+        circletree_recv,
+        circletree_send,
+        circletree_to_bytea,
+        circletree_from_bytea,
+        circletree_eq,
+        circletree_ne
+    ]
+);

@@ -1,0 +1,115 @@
+//! SQL functions over `circletree`: inspection and decoding. PostGIS-facing wrappers that take
+//! or return `geometry` are SQL functions in `lib.rs` over these WKB functions.
+
+use crate::datatype::CircleTree;
+use crate::error::OrRaise;
+use circletree_core::decode;
+use circletree_core::geometry::Kind;
+use pgrx::prelude::*;
+use serde_json::json;
+
+/// The circles in stored order: part, ring and position (1-based), centre and signed radius.
+#[pg_extern(immutable, strict, parallel_safe)]
+fn ct_circles(
+    ct: CircleTree,
+) -> TableIterator<
+    'static,
+    (
+        name!(part, i32),
+        name!(ring, i32),
+        name!(seq, i32),
+        name!(x, f64),
+        name!(y, f64),
+        name!(r, f64),
+    ),
+> {
+    let f = decode::scale(&ct.value);
+    let mut rows = Vec::with_capacity(ct.value.ncircles());
+    for (pi, part) in ct.value.parts.iter().enumerate() {
+        for (ri, ring) in part.iter().enumerate() {
+            for (ci, c) in ring.iter().enumerate() {
+                rows.push((
+                    pi as i32 + 1,
+                    ri as i32 + 1,
+                    ci as i32 + 1,
+                    f(c.x),
+                    f(c.y),
+                    f(c.r),
+                ));
+            }
+        }
+    }
+    TableIterator::new(rows)
+}
+
+/// Number of circles in all rings (a repeated circle counts each time it is stored).
+#[pg_extern(immutable, strict, parallel_safe)]
+fn ct_ncircles(ct: CircleTree) -> i32 {
+    ct.value.ncircles() as i32
+}
+
+/// The SRID the value was encoded with.
+#[pg_extern(immutable, strict, parallel_safe)]
+fn ct_srid(ct: CircleTree) -> i32 {
+    ct.value.srid
+}
+
+/// Bytes of the value in memory, varlena header included (as ST_MemSize).
+#[pg_extern(immutable, strict, parallel_safe)]
+fn ct_memsize(ct: CircleTree) -> i32 {
+    (ct.bytes.len() + pgrx::pg_sys::VARHDRSZ) as i32
+}
+
+/// Everything about a value in one JSON object.
+#[pg_extern(immutable, strict, parallel_safe)]
+fn ct_summary(ct: CircleTree) -> pgrx::JsonB {
+    let v = &ct.value;
+    let all = v.parts.iter().flatten().flatten();
+    let (mut internal, mut external, mut zero) = (0u64, 0u64, 0u64);
+    for c in all {
+        match c.r.signum() {
+            1 => internal += 1,
+            -1 => external += 1,
+            _ => zero += 1,
+        }
+    }
+    let bytes = ct.bytes.len() + pgrx::pg_sys::VARHDRSZ;
+    let p = &v.params;
+    let num = |d: circletree_core::decimal::Decimal| d.to_f64();
+    pgrx::JsonB(json!({
+        "format_version": circletree_core::format::FORMAT_VERSION,
+        "srid": v.srid,
+        "kind": if v.kind == Kind::Polygon { "Polygon" } else { "MultiPolygon" },
+        "parts": v.parts.len(),
+        "rings": v.parts.iter().map(Vec::len).sum::<usize>(),
+        "circles": v.ncircles(),
+        "internal": internal,
+        "external": external,
+        "zero": zero,
+        "added_by_repair": v.repaired,
+        "grid": num(v.grid),
+        "bytes": bytes,
+        "original_vertices": v.vertices,
+        "original_wkb_bytes": v.wkb_bytes,
+        "storage_ratio": if v.wkb_bytes > 0 { bytes as f64 / v.wkb_bytes as f64 } else { f64::NAN },
+        "params": {
+            "min_radius": num(p.min_radius),
+            "overlap": num(p.overlap),
+            "dp_tolerance": p.dp_tolerance.map(num),
+            "max_error": num(p.max_error),
+        },
+    }))
+}
+
+/// The rebuilt boundary as WKB, arcs stroked to `arc_tolerance` (NULL: the grid step).
+#[pg_extern(immutable, parallel_safe)]
+fn _ct_decode_wkb(ct: Option<CircleTree>, arc_tolerance: Option<f64>) -> Option<Vec<u8>> {
+    let ct = ct?;
+    Some(decode::to_wkb(&ct.value, arc_tolerance).or_raise())
+}
+
+/// The rebuilt boundary with true arcs, as WKT.
+#[pg_extern(immutable, strict, parallel_safe)]
+fn _ct_decode_curved_wkt(ct: CircleTree) -> String {
+    decode::to_curved_wkt(&ct.value)
+}
