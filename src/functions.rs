@@ -113,3 +113,64 @@ fn _ct_decode_wkb(ct: Option<CircleTree>, arc_tolerance: Option<f64>) -> Option<
 fn _ct_decode_curved_wkt(ct: CircleTree) -> String {
     decode::to_curved_wkt(&ct.value)
 }
+
+fn interrupt() {
+    pgrx::check_for_interrupts!();
+}
+
+/// Encode a WKB Polygon/MultiPolygon. `invalid_reason` comes from ST_IsValidReason when
+/// ST_IsValid is false. NULL geometry, min_radius or overlap give NULL.
+#[allow(clippy::too_many_arguments)]
+#[pg_extern(immutable, parallel_safe)]
+fn _ct_encode_wkb(
+    wkb: Option<&[u8]>,
+    srid: Option<i32>,
+    invalid_reason: Option<&str>,
+    min_radius: Option<f64>,
+    overlap: Option<f64>,
+    dp_tolerance: Option<f64>,
+    max_error: Option<f64>,
+) -> Option<CircleTree> {
+    let (wkb, min_radius, overlap) = (wkb?, min_radius?, overlap?);
+    let opts = circletree_core::encode::Options {
+        min_radius,
+        overlap,
+        dp_tolerance,
+        max_error,
+    };
+    let (value, report) = circletree_core::encode::encode_checked(
+        wkb,
+        srid.unwrap_or(0),
+        &opts,
+        invalid_reason,
+        &mut interrupt,
+    )
+    .or_raise();
+    if report.dropped_zm {
+        pgrx::notice!("circletree: the geometry's Z and M values were dropped; circletree stores 2D boundaries");
+    }
+    Some(CircleTree::new(value))
+}
+
+fn original(wkb: &[u8]) -> Vec<circletree_core::geometry::Polygon> {
+    circletree_core::wkb::read(wkb).or_raise().shape.parts
+}
+
+/// Area of the symmetric difference between the rebuilt value and a geometry (WKB).
+#[pg_extern(immutable, strict, parallel_safe)]
+fn _ct_sliver_error_wkb(ct: CircleTree, wkb: &[u8]) -> f64 {
+    circletree_core::metrics::value_sliver(&ct.value, &original(wkb))
+}
+
+/// Continuous Hausdorff distance between the rebuilt boundary and a geometry's boundary (WKB).
+#[pg_extern(immutable, strict, parallel_safe)]
+fn _ct_hausdorff_wkb(ct: CircleTree, wkb: &[u8]) -> f64 {
+    circletree_core::metrics::value_hausdorff(&ct.value, &original(wkb), &mut interrupt)
+}
+
+/// ct_memsize(ct) over the original's WKB bytes, both recorded in the value.
+#[pg_extern(immutable, strict, parallel_safe)]
+fn ct_storage_ratio(ct: CircleTree) -> Option<f64> {
+    let w = ct.value.wkb_bytes;
+    (w > 0).then(|| (ct.bytes.len() + pgrx::pg_sys::VARHDRSZ) as f64 / w as f64)
+}

@@ -23,6 +23,48 @@ CREATE FUNCTION ct_decode(ct circletree, arc_tolerance float8) RETURNS geometry
 CREATE FUNCTION ct_decode_curved(ct circletree) RETURNS geometry
     LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
     AS $$ SELECT ST_GeomFromText(_ct_decode_curved_wkt($1), ct_srid($1)) $$;
+
+-- Validity is PostGIS's own (ST_IsValid), so what PostGIS accepts, circletree accepts.
+CREATE FUNCTION ct_encode(geom geometry, min_radius float8, overlap float8 DEFAULT 0.4,
+                          dp_tolerance float8 DEFAULT NULL, max_error float8 DEFAULT NULL)
+    RETURNS circletree LANGUAGE sql IMMUTABLE PARALLEL SAFE
+    AS $$ SELECT _ct_encode_wkb(ST_AsBinary($1), ST_SRID($1),
+            CASE WHEN GeometryType($1) IN ('POLYGON', 'MULTIPOLYGON') AND NOT ST_IsValid($1)
+                 THEN ST_IsValidReason($1) END,
+            $2, $3, $4, $5) $$;
+
+CREATE FUNCTION ct_storage_ratio(ct circletree, geom geometry) RETURNS float8
+    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
+    AS $$ SELECT pg_column_size($1)::float8 / pg_column_size($2) $$;
+CREATE FUNCTION ct_sliver_error(ct circletree, geom geometry) RETURNS float8
+    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
+    AS $$ SELECT _ct_sliver_error_wkb($1, ST_AsBinary($2)) $$;
+CREATE FUNCTION ct_sliver_ratio(ct circletree, geom geometry) RETURNS float8
+    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
+    AS $$ SELECT _ct_sliver_error_wkb($1, ST_AsBinary($2)) / NULLIF(ST_Area($2), 0) $$;
+CREATE FUNCTION ct_hausdorff(ct circletree, geom geometry) RETURNS float8
+    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
+    AS $$ SELECT _ct_hausdorff_wkb($1, ST_AsBinary($2)) $$;
+
+-- The paper's experiment (figures 11-14) on one polygon: every combination of the three arrays.
+CREATE FUNCTION ct_sweep(geom geometry,
+        min_radius float8[] DEFAULT '{1,5,10,15,25}',
+        overlap float8[] DEFAULT '{0,0.1,0.4,0.6,0.9}',
+        dp_tolerance float8[] DEFAULT '{NULL,1,5,10,15,25}')
+    RETURNS TABLE(min_radius float8, overlap float8, dp_tolerance float8, circles int, internal int,
+                  external int, zero int, added_by_repair int, bytes int, storage_ratio float8,
+                  sliver_ratio float8, hausdorff float8, valid bool)
+    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
+    AS $$
+    SELECT m, o, d, (s->>'circles')::int, (s->>'internal')::int, (s->>'external')::int,
+           (s->>'zero')::int, (s->>'added_by_repair')::int, (s->>'bytes')::int,
+           (s->>'storage_ratio')::float8, ct_sliver_ratio(ct, $1), ct_hausdorff(ct, $1),
+           ST_IsValid(ct_decode(ct))
+      FROM unnest($2) m, unnest($3) o, unnest($4) d,
+           LATERAL (SELECT ct_encode($1, m, o, d) AS ct) e,
+           LATERAL (SELECT ct_summary(e.ct) AS s) x
+     ORDER BY d NULLS FIRST, o, m
+    $$;
 "#,
     name = "postgis_wrappers",
     requires = [

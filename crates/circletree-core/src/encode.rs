@@ -22,7 +22,8 @@
 use crate::decimal::Decimal;
 use crate::error::{Error, Result};
 use crate::format::{Circle, CircleTree, Params, MAX_STEPS};
-use crate::geometry::{dist, orient, Pt, Shape};
+use crate::geometry::{orient, Pt, Shape};
+use crate::metrics::segment_max;
 use crate::reconstruct::{ring_spans, stroke_spans};
 use crate::validity::{problems, RingRef};
 use crate::{douglas_peucker, filter, medial};
@@ -148,33 +149,6 @@ fn nearest(tree: &RTree<GeomWithData<Line<[f64; 2]>, u32>>, p: Pt) -> f64 {
         .map_or(f64::INFINITY, |g| g.geom().distance_2(&p).sqrt())
 }
 
-/// Largest distance from segment `a-b` to the set indexed by `tree`, decided against `target`:
-/// `Err(point)` where it exceeds it. Bisection with the bound d(x) ≤ (d(a) + d(b) + |ab|) / 2.
-fn segment_within(
-    tree: &RTree<GeomWithData<Line<[f64; 2]>, u32>>,
-    a: Pt,
-    b: Pt,
-    da: f64,
-    db: f64,
-    target: f64,
-) -> bool {
-    let mut stack = vec![(a, b, da, db, 0u32)];
-    while let Some((a, b, da, db, depth)) = stack.pop() {
-        if da > target || db > target {
-            return false;
-        }
-        let len = dist(a, b);
-        if (da + db + len) / 2.0 <= target || depth >= 16 {
-            continue;
-        }
-        let m = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
-        let dm = nearest(tree, m);
-        stack.push((a, m, da, dm, depth + 1));
-        stack.push((m, b, dm, db, depth + 1));
-    }
-    true
-}
-
 fn span_of_vertex(entries: &[Entry], v: usize) -> usize {
     let k = entries.partition_point(|e| e.anchor <= v);
     if k == 0 {
@@ -196,8 +170,22 @@ pub fn encode(
     opts: &Options,
     interrupt: &mut dyn FnMut(),
 ) -> Result<(CircleTree, Report)> {
+    encode_checked(wkb, srid, opts, None, interrupt)
+}
+
+/// [`encode`], told by the caller (PostGIS's `ST_IsValidReason`) when the input is not valid.
+pub fn encode_checked(
+    wkb: &[u8],
+    srid: i32,
+    opts: &Options,
+    invalid_reason: Option<&str>,
+    interrupt: &mut dyn FnMut(),
+) -> Result<(CircleTree, Report)> {
     let max_error = opts.check()?;
     let input = crate::wkb::read(wkb)?;
+    if let Some(reason) = invalid_reason {
+        return Err(Error::InvalidPolygon(reason.to_string()));
+    }
     let mut shape = input.shape;
     orient(&mut shape);
     let mut report = Report {
@@ -289,10 +277,11 @@ fn initial_entries(
         })
         .collect();
     if let Some(dp) = opts.dp_tolerance {
-        // covered[v]: vertex v lies strictly inside a kept run
+        // covered[v]: vertex v lies on a kept run (its ends included: a point on a circle has a
+        // degenerate tangent to it)
         let mut covered = vec![false; n];
         for m in &kept {
-            for k in 1..m.len {
+            for k in 0..=m.len {
                 covered[(m.start + k) % n] = true;
             }
         }
@@ -412,24 +401,17 @@ fn encode_with_grid(
             let n = st.pts.len();
             let rtree = seg_tree(&st.recon, Some(&st.span_of));
             st.vdist = st.pts.iter().map(|&p| nearest(&rtree, p)).collect();
+            let eps = g * 1e-3;
             for v in 0..n {
                 let w = (v + 1) % n;
-                if !segment_within(
-                    &rtree,
-                    st.pts[v],
-                    st.pts[w],
-                    st.vdist[v],
-                    st.vdist[w],
-                    target,
-                ) {
+                if segment_max(&rtree, st.pts[v], st.pts[w], target, eps) > target + eps {
                     failing[k].push(span_of_vertex(&st.entries, v));
                 }
             }
             let m = st.recon.len();
-            let rd: Vec<f64> = st.recon.iter().map(|&p| nearest(&st.orig, p)).collect();
             for i in 0..m {
                 let j = (i + 1) % m;
-                if !segment_within(&st.orig, st.recon[i], st.recon[j], rd[i], rd[j], target) {
+                if segment_max(&st.orig, st.recon[i], st.recon[j], target, eps) > target + eps {
                     failing[k].push(st.span_of[i] as usize);
                 }
             }
@@ -459,6 +441,7 @@ fn encode_with_grid(
             return Ok(Outcome::Done(rings, repaired));
         }
         let hurry = round > 24;
+        let mut progress = false;
         for (k, mut spans) in failing.into_iter().enumerate() {
             if spans.is_empty() {
                 continue;
@@ -466,15 +449,19 @@ fn encode_with_grid(
             spans.sort_unstable();
             spans.dedup();
             let st = &mut rings[k];
-            if !repair(st, &spans, target, hurry) {
-                return Ok(Outcome::FinerGrid);
+            if repair(st, &spans, target, hurry) {
+                st.dirty = true;
+                progress = true;
             }
-            st.dirty = true;
+        }
+        if !progress {
+            // Every failing span is already an original edge between two kept vertices.
+            return Ok(Outcome::FinerGrid);
         }
     }
 }
 
-/// Repair failing spans of one ring. `false` when a span has nothing left to add.
+/// Repair failing spans of one ring. `false` when no span had anything left to add or remove.
 fn repair(st: &mut RingState, spans: &[usize], target: f64, hurry: bool) -> bool {
     let n = st.pts.len();
     let m = st.entries.len();
@@ -507,8 +494,6 @@ fn repair(st: &mut RingState, spans: &[usize], target: f64, hurry: bool) -> bool
                 add.push(point(st.entries[j].anchor));
             } else if m < n && a == b % n && m == 1 {
                 add.extend([point((a + n / 3) % n), point((a + 2 * n / 3) % n)]);
-            } else {
-                return false;
             }
             continue;
         }
@@ -532,6 +517,8 @@ fn repair(st: &mut RingState, spans: &[usize], target: f64, hurry: bool) -> bool
         };
         add.push(point(v));
     }
+    let before = st.entries.len();
+    let removed = remove.iter().filter(|&&r| r).count();
     let mut next: Vec<Entry> = st
         .entries
         .iter()
@@ -541,8 +528,9 @@ fn repair(st: &mut RingState, spans: &[usize], target: f64, hurry: bool) -> bool
         .collect();
     next.extend(add);
     sort_entries(&mut next);
+    let changed = removed > 0 || next.len() != before;
     st.entries = next;
-    true
+    changed
 }
 
 #[cfg(test)]

@@ -16,6 +16,7 @@ pub mod filter;
 pub mod format;
 pub mod geometry;
 pub mod medial;
+pub mod metrics;
 pub mod reconstruct;
 pub mod text;
 pub mod validity;

@@ -1,0 +1,49 @@
+//! Encode every real polygon at one setting and print circles, bytes and time:
+//! `cargo run --release -p circletree-core --example corpus -- 5 0.4 10`
+#[path = "../tests/common/mod.rs"]
+mod common;
+use circletree_core::encode::{encode, Options};
+use std::time::Instant;
+
+fn main() {
+    let a: Vec<f64> = std::env::args()
+        .skip(1)
+        .map(|s| s.parse().expect("number"))
+        .collect();
+    let o = Options {
+        min_radius: a.first().copied().unwrap_or(5.0),
+        overlap: a.get(1).copied().unwrap_or(0.4),
+        dp_tolerance: a.get(2).copied(),
+        max_error: a.get(3).copied(),
+    };
+    let (mut tb, mut tw, mut tt) = (0usize, 0usize, 0.0);
+    let only: Vec<String> = std::env::var("CT_ONLY")
+        .map(|v| v.split(',').map(String::from).collect())
+        .unwrap_or_default();
+    let only: Vec<&str> = only.iter().map(|s| s.as_str()).collect();
+    for s in common::load(&only) {
+        let t = Instant::now();
+        let res = encode(&s.wkb, s.srid, &o, &mut || {});
+        let dt = t.elapsed().as_secs_f64();
+        tt += dt;
+        match res {
+            Ok((ct, rep)) => {
+                let b = ct.to_bytes().len();
+                tb += b;
+                tw += s.wkb.len();
+                let all: Vec<_> = ct.parts.iter().flatten().flatten().collect();
+                let (i, e) = (
+                    all.iter().filter(|c| c.r > 0).count(),
+                    all.iter().filter(|c| c.r < 0).count(),
+                );
+                println!("{:28} n={:6} circles={:6} int={:5} ext={:5} zero={:6} repaired={:6} filt={:5} dp={:5} rounds={:3} bytes={:7} wkb={:8} ratio={:.3} {:.3}s",
+                    s.name, s.npoints, all.len(), i, e, all.len() - i - e, ct.repaired, rep.filtered_circles, rep.dp_points, rep.rounds, b, s.wkb.len(), b as f64 / s.wkb.len() as f64, dt);
+            }
+            Err(e) => println!("{:28} ERROR {e}", s.name),
+        }
+    }
+    println!(
+        "TOTAL bytes={tb} wkb={tw} ratio={:.4} time={tt:.2}s",
+        tb as f64 / tw as f64
+    );
+}

@@ -1,0 +1,43 @@
+//! Shared by the integration tests and benches: the real polygons shipped in tests/data.
+#![allow(dead_code)]
+
+use std::io::Read;
+use std::str::FromStr;
+
+/// One real polygon: name, SRID, ST_NPoints, WKB.
+pub struct Sample {
+    pub name: String,
+    pub srid: i32,
+    pub npoints: usize,
+    pub wkb: Vec<u8>,
+}
+
+/// All polygons of tests/data/polygons.tsv.gz (or only those named).
+pub fn load(only: &[&str]) -> Vec<Sample> {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../tests/data/polygons.tsv.gz"
+    );
+    let mut text = String::new();
+    flate2::read::GzDecoder::new(std::fs::File::open(path).expect("tests/data/polygons.tsv.gz"))
+        .read_to_string(&mut text)
+        .expect("gzip");
+    let mut out = Vec::new();
+    for line in text.lines().skip(1) {
+        let f: Vec<&str> = line.split('\t').collect();
+        if !only.is_empty() && !only.contains(&f[0]) {
+            continue;
+        }
+        let wkt = wkt::Wkt::<f64>::from_str(f[4]).expect("wkt");
+        let geom: geo_types::Geometry<f64> = wkt.try_into().expect("geometry");
+        let mut wkb = Vec::new();
+        wkb::writer::write_geometry(&mut wkb, &geom, &Default::default()).expect("wkb");
+        out.push(Sample {
+            name: f[0].to_string(),
+            srid: f[2].parse().expect("srid"),
+            npoints: f[3].parse().expect("npoints"),
+            wkb,
+        });
+    }
+    out
+}
