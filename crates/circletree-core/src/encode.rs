@@ -126,6 +126,8 @@ struct RingState {
     circles: Vec<Circle>,
     recon: Vec<Pt>,
     span_of: Vec<u32>,
+    fine: Vec<Pt>,
+    fine_span_of: Vec<u32>,
     vdist: Vec<f64>,
     dirty: bool,
 }
@@ -147,6 +149,25 @@ fn seg_tree(pts: &[Pt], ids: Option<&[u32]>) -> RTree<GeomWithData<Line<[f64; 2]
 fn nearest(tree: &RTree<GeomWithData<Line<[f64; 2]>, u32>>, p: Pt) -> f64 {
     tree.nearest_neighbor(&p)
         .map_or(f64::INFINITY, |g| g.geom().distance_2(&p).sqrt())
+}
+
+/// Stroke spans and drop repeated points, as the decoder does, keeping each point's span.
+fn stroke_dedup(spans: &crate::reconstruct::Spans, tol: f64) -> (Vec<Pt>, Vec<u32>) {
+    let (mut pts, mut ids) = (Vec::new(), Vec::new());
+    stroke_spans(spans, tol, &mut pts, &mut ids);
+    let mut rp: Vec<Pt> = Vec::with_capacity(pts.len());
+    let mut ri: Vec<u32> = Vec::with_capacity(pts.len());
+    for (p, id) in pts.into_iter().zip(ids) {
+        if rp.last() != Some(&p) {
+            rp.push(p);
+            ri.push(id);
+        }
+    }
+    while rp.len() > 1 && rp.first() == rp.last() {
+        rp.pop();
+        ri.pop();
+    }
+    (rp, ri)
 }
 
 fn span_of_vertex(entries: &[Entry], v: usize) -> usize {
@@ -347,6 +368,8 @@ fn encode_with_grid(
                 circles: vec![],
                 recon: vec![],
                 span_of: vec![],
+                fine: vec![],
+                fine_span_of: vec![],
                 vdist: vec![],
                 dirty: true,
             });
@@ -380,23 +403,10 @@ fn encode_with_grid(
                 .map(|c| [unq(c.x), unq(c.y), unq(c.r)])
                 .collect();
             let spans = ring_spans(&fc);
-            let (mut pts, mut ids) = (Vec::new(), Vec::new());
-            stroke_spans(&spans, g, &mut pts, &mut ids);
-            // drop repeated points, as the decoder does
-            let mut rp: Vec<Pt> = Vec::with_capacity(pts.len());
-            let mut ri: Vec<u32> = Vec::with_capacity(pts.len());
-            for (p, id) in pts.into_iter().zip(ids) {
-                if rp.last() != Some(&p) {
-                    rp.push(p);
-                    ri.push(id);
-                }
-            }
-            while rp.len() > 1 && rp.first() == rp.last() {
-                rp.pop();
-                ri.pop();
-            }
-            st.recon = rp;
-            st.span_of = ri;
+            (st.recon, st.span_of) = stroke_dedup(&spans, g);
+            // Validity is also checked close to the true arcs, so that decoding with any arc
+            // tolerance up to the grid step, or with true arcs, stays valid.
+            (st.fine, st.fine_span_of) = stroke_dedup(&spans, g / 100.0);
             // Hausdorff, both ways
             let n = st.pts.len();
             let rtree = seg_tree(&st.recon, Some(&st.span_of));
@@ -417,19 +427,26 @@ fn encode_with_grid(
             }
         }
         interrupt();
-        let refs: Vec<RingRef> = rings
-            .iter()
-            .map(|r| RingRef {
-                part: r.part,
-                ring: r.index,
-                pts: &r.recon,
-            })
-            .collect();
-        for (k, seg) in problems(&refs, interrupt) {
-            if seg == usize::MAX {
-                failing[k].extend(0..rings[k].entries.len());
-            } else if let Some(&s) = rings[k].span_of.get(seg) {
-                failing[k].push(s as usize);
+        for fine in [false, true] {
+            let refs: Vec<RingRef> = rings
+                .iter()
+                .map(|r| RingRef {
+                    part: r.part,
+                    ring: r.index,
+                    pts: if fine { &r.fine } else { &r.recon },
+                })
+                .collect();
+            for (k, seg) in problems(&refs, interrupt) {
+                let ids = if fine {
+                    &rings[k].fine_span_of
+                } else {
+                    &rings[k].span_of
+                };
+                if seg == usize::MAX {
+                    failing[k].extend(0..rings[k].entries.len());
+                } else if let Some(&s) = ids.get(seg) {
+                    failing[k].push(s as usize);
+                }
             }
         }
         if failing.iter().all(Vec::is_empty) {
