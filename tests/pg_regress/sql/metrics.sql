@@ -10,10 +10,12 @@ SELECT count(*) FILTER (WHERE abs(ct_sliver_error(ct, geom) - ST_Area(ST_SymDiff
                               <= greatest(1, 0.01 * ST_Area(ST_SymDifference(geom, ct_decode(ct, (ct_summary(ct)->>'grid')::float8 / 100))))) AS sliver_agrees,
        count(*) FILTER (WHERE abs(ct_sliver_ratio(ct, geom) - ct_sliver_error(ct, geom) / ST_Area(geom)) < 1e-12) AS sliver_ratio_ok
   FROM m;
--- continuous Hausdorff is never below PostGIS's discrete one
-SELECT count(*) FILTER (WHERE ct_hausdorff(ct, geom) + 1e-6 >= ST_HausdorffDistance(ct_decode(ct, (ct_summary(ct)->>'grid')::float8 / 100), geom)) AS not_below
-  FROM m;
--- the paper's experiment on Kapiti Island, a slice of it (the full sweep is in BENCHMARKS.md)
+-- continuous Hausdorff is never below PostGIS's discrete one (which is quadratic: polygons of at
+-- most 2,000 vertices)
+SELECT count(*) AS polygons,
+       count(*) FILTER (WHERE ct_hausdorff(ct, geom) + 1e-6 >= ST_HausdorffDistance(ct_decode(ct, (ct_summary(ct)->>'grid')::float8 / 100), geom)) AS not_below
+  FROM m WHERE ST_NPoints(geom) <= 2000;
+-- the paper's experiment on Kapiti Island, a slice of it (ct_sweep with its default arrays runs all 150)
 SELECT min_radius, overlap, dp_tolerance, circles, internal, external, zero, added_by_repair, bytes, valid,
        hausdorff <= greatest(min_radius, coalesce(dp_tolerance, 0)) AS within_bound
   FROM ct_sweep((SELECT geom FROM coast WHERE name = 'kapiti_island_linz'), '{5,25}', '{0,0.9}', '{NULL,10}');
