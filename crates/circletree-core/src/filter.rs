@@ -91,8 +91,20 @@ fn sweep(a: Pt, b: Pt, c: Pt) -> f64 {
 pub fn map_runs(ring: &[Pt], cands: &[Candidate], min_radius: f64, tol: f64) -> Vec<Mapped> {
     let n = ring.len();
     let mut out = Vec::new();
+    // Nearly identical circles (cocircular vertices give many) would map the same long runs again
+    // and again: keep one per cell of a quarter of the tolerance in centre and radius.
+    let cell = (tol / 4.0).max(f64::MIN_POSITIVE);
+    let mut seen_circles = std::collections::HashSet::new();
     for cand in cands {
         if cand.r.abs() < min_radius {
+            continue;
+        }
+        let key = (
+            (cand.c[0] / cell).round() as i64,
+            (cand.c[1] / cell).round() as i64,
+            (cand.r / cell).round() as i64,
+        );
+        if !seen_circles.insert(key) {
             continue;
         }
         let mut seen: Vec<(usize, usize)> = Vec::with_capacity(3);

@@ -1,0 +1,51 @@
+//! Encode time for one synthetic coastline of 1e3 .. 1e6 vertices (a wavy disc with noise):
+//! `cargo run --release -p circletree-core --example scaling`. Peak memory: run under
+//! `/usr/bin/time -v`.
+use circletree_core::encode::{encode, Options};
+use circletree_core::geometry::Kind;
+use std::time::Instant;
+
+fn main() {
+    let sizes: Vec<usize> = std::env::args()
+        .skip(1)
+        .map(|s| s.parse().expect("size"))
+        .collect();
+    let sizes = if sizes.is_empty() {
+        vec![1_000, 10_000, 100_000, 1_000_000]
+    } else {
+        sizes
+    };
+    for n in sizes {
+        let mut seed = 12345u64;
+        let ring: Vec<[f64; 2]> = (0..n)
+            .map(|i| {
+                seed = seed
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                let noise = (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
+                let t = i as f64 / n as f64 * std::f64::consts::TAU;
+                let r =
+                    100_000.0 + 3_000.0 * (7.0 * t).sin() + 800.0 * (53.0 * t).sin() + 20.0 * noise;
+                [500_000.0 + r * t.cos(), 6_000_000.0 + r * t.sin()]
+            })
+            .collect();
+        let wkb = circletree_core::wkb::write(Kind::Polygon, &[vec![ring]]);
+        let opts = Options {
+            min_radius: 5.0,
+            overlap: 0.4,
+            dp_tolerance: Some(10.0),
+            max_error: None,
+        };
+        let t = Instant::now();
+        let (ct, rep) = encode(&wkb, 32760, &opts, &mut || {}).expect("encode");
+        println!(
+            "n={n:8} time={:.3}s circles={} repaired={} rounds={} bytes={} wkb={}",
+            t.elapsed().as_secs_f64(),
+            ct.ncircles(),
+            ct.repaired,
+            rep.rounds,
+            ct.to_bytes().len(),
+            wkb.len()
+        );
+    }
+}
