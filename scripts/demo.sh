@@ -30,7 +30,7 @@ SELECT name, ST_NPoints(geom) AS vertices, octet_length(ST_AsBinary(geom)) AS wk
   FROM (SELECT name, geom, ct_encode(geom, 5, 0.4, 10) AS ct FROM coast) e, LATERAL ct_summary(ct) s
  ORDER BY vertices;
 \echo
-\echo The same polygons, PostGIS's own: ST_Simplify(geom, 10, true) as TWKB on a 1 m grid
+\echo The same polygons by PostGIS alone: ST_Simplify(geom, 10, true) as TWKB on a 1 m grid (smaller today, see README)
 \echo
 SELECT name, ST_NPoints(s) AS vertices, octet_length(ST_AsTWKB(s, 0)) AS twkb_bytes, ST_IsValid(s) AS valid,
        round(ST_HausdorffDistance(s, geom)::numeric, 2) AS hausdorff_m
