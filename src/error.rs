@@ -46,8 +46,7 @@ pub fn raise(e: Error) -> ! {
     ErrorReport::new(code, e.to_string(), "circletree")
         .set_hint(hint)
         .report(PgLogLevel::ERROR);
-    // ok: report(ERROR) longjmps out through pgrx's guard and never returns here.
-    unreachable!("ereport(ERROR) returned")
+    unreachable!("ereport(ERROR) returned") // ok: report(ERROR) never returns (it unwinds to pgrx's guard)
 }
 
 /// Unwrap a core result or raise its error.

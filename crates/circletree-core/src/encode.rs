@@ -238,7 +238,6 @@ pub fn encode_checked(
         }
         match encode_with_grid(&shape, opts, max_error, g, interrupt, &mut report)? {
             Outcome::Done(rings, repaired) => {
-                let q = |v: f64| (v / g).round() as i64;
                 let mut parts: Vec<Vec<Vec<Circle>>> = vec![Vec::new(); shape.parts.len()];
                 for r in rings {
                     parts[r.part].push(r.circles);
@@ -261,7 +260,6 @@ pub fn encode_checked(
                     }),
                     parts,
                 };
-                let _ = q;
                 ct.validate()?;
                 return Ok((ct, report));
             }
