@@ -124,7 +124,7 @@ impl<'a> Parser<'a> {
             false
         }
     }
-    fn expect(&mut self, tok: &str) -> Result<()> {
+    fn expect_token(&mut self, tok: &str) -> Result<()> {
         if self.eat(tok) {
             Ok(())
         } else {
@@ -178,26 +178,26 @@ impl<'a> Parser<'a> {
         }
     }
     fn param(&mut self, name: &str) -> Result<Decimal> {
-        self.expect(name)?;
-        self.expect("=")?;
+        self.expect_token(name)?;
+        self.expect_token("=")?;
         let d = self.decimal(name)?;
-        self.expect(";")?;
+        self.expect_token(";")?;
         Ok(d)
     }
     fn count(&mut self, name: &str) -> Result<u64> {
-        self.expect(name)?;
-        self.expect("=")?;
+        self.expect_token(name)?;
+        self.expect_token("=")?;
         let v = self.uint(name)?;
-        self.expect(";")?;
+        self.expect_token(";")?;
         Ok(v)
     }
     fn list<T>(&mut self, mut item: impl FnMut(&mut Self) -> Result<T>) -> Result<Vec<T>> {
-        self.expect("(")?;
+        self.expect_token("(")?;
         let mut v = vec![item(self)?];
         while self.eat(",") {
             v.push(item(self)?);
         }
-        self.expect(")")?;
+        self.expect_token(")")?;
         Ok(v)
     }
 }
@@ -207,7 +207,7 @@ pub fn from_text(s: &str) -> Result<CircleTree> {
     let mut p = Parser { s, pos: 0 };
     let mut srid = 0i32;
     if p.eat("SRID") {
-        p.expect("=")?;
+        p.expect_token("=")?;
         p.skip_ws();
         let save = p.pos;
         let w = p.word();
@@ -218,10 +218,10 @@ pub fn from_text(s: &str) -> Result<CircleTree> {
                 return p.err("an integer SRID");
             }
         };
-        p.expect(";")?;
+        p.expect_token(";")?;
     }
-    p.expect("CIRCLETREE")?;
-    p.expect("(")?;
+    p.expect_token("CIRCLETREE")?;
+    p.expect_token("(")?;
     let grid = p.param("grid")?;
     if grid.mantissa <= 0 {
         p.pos = s[..p.pos].rfind('=').map_or(p.pos, |i| i + 1);
@@ -229,29 +229,29 @@ pub fn from_text(s: &str) -> Result<CircleTree> {
     }
     let min_radius = p.param("min_radius")?;
     let overlap = p.param("overlap")?;
-    p.expect("dp_tolerance")?;
-    p.expect("=")?;
+    p.expect_token("dp_tolerance")?;
+    p.expect_token("=")?;
     let dp_tolerance = if p.eat("NULL") {
         None
     } else {
         Some(p.decimal("dp_tolerance")?)
     };
-    p.expect(";")?;
+    p.expect_token(";")?;
     let max_error = p.param("max_error")?;
     let vertices = p.count("vertices")?;
     let wkb_bytes = p.count("wkb_bytes")?;
     let repaired = p.count("repaired")?;
     let mut bbox = None;
     if p.eat("bbox") {
-        p.expect("=")?;
-        p.expect("(")?;
+        p.expect_token("=")?;
+        p.expect_token("(")?;
         let x0 = p.on_grid(grid, "bbox xmin")?;
         let y0 = p.on_grid(grid, "bbox ymin")?;
-        p.expect(",")?;
+        p.expect_token(",")?;
         let x1 = p.on_grid(grid, "bbox xmax")?;
         let y1 = p.on_grid(grid, "bbox ymax")?;
-        p.expect(")")?;
-        p.expect(";")?;
+        p.expect_token(")")?;
+        p.expect_token(";")?;
         bbox = Some([x0, y0, x1, y1]);
     }
     let kind = if p.eat("MULTIPOLYGON") {
@@ -276,7 +276,7 @@ pub fn from_text(s: &str) -> Result<CircleTree> {
     } else {
         vec![polygon(&mut p)?]
     };
-    p.expect(")")?;
+    p.expect_token(")")?;
     p.skip_ws();
     if p.pos != s.len() {
         return p.err("the end of the value");

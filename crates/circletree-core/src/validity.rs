@@ -115,9 +115,6 @@ pub fn problems(rings: &[RingRef], interrupt: &mut dyn FnMut()) -> Vec<(usize, u
                         bad.push((k2, j));
                     }
                 }
-                if n == 3 && k == k2 {
-                    continue;
-                }
                 continue;
             }
             if segments_touch(a, b, c, d) {
