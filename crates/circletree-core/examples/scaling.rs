@@ -1,6 +1,11 @@
-//! Encode time for one synthetic coastline of 1e3 .. 1e6 vertices (a wavy disc with noise):
-//! `cargo run --release -p circletree-core --example scaling`. Peak memory: run under
-//! `/usr/bin/time -v`.
+//! Encode time for one synthetic coastline of 1e3 .. 1e6 vertices:
+//! `cargo run --release -p circletree-core --example scaling [n ...]`. Peak memory: run under
+//! `/usr/bin/time -v`, one size per run.
+//!
+//! The coastline keeps its resolution as it grows, as real data does (a bigger island has more
+//! vertices at the same spacing, not a denser outline): vertices 10 m apart along a disc of
+//! circumference 10·n m, with bays and headlands at wavelengths of 20 km, 2 km and 200 m
+//! (amplitudes 1 km, 100 m, 10 m) and 2 m of vertex noise.
 use circletree_core::encode::{encode, Options};
 use circletree_core::geometry::Kind;
 use std::time::Instant;
@@ -17,6 +22,10 @@ fn main() {
     };
     for n in sizes {
         let mut seed = 12345u64;
+        let radius = 10.0 * n as f64 / std::f64::consts::TAU;
+        // whole numbers of waves around the ring, so that it closes smoothly
+        let waves = |wavelength: f64| (10.0 * n as f64 / wavelength).round().max(1.0);
+        let (k1, k2, k3) = (waves(20_000.0), waves(2_000.0), waves(200.0));
         let ring: Vec<[f64; 2]> = (0..n)
             .map(|i| {
                 seed = seed
@@ -24,8 +33,11 @@ fn main() {
                     .wrapping_add(1442695040888963407);
                 let noise = (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
                 let t = i as f64 / n as f64 * std::f64::consts::TAU;
-                let r =
-                    100_000.0 + 3_000.0 * (7.0 * t).sin() + 800.0 * (53.0 * t).sin() + 20.0 * noise;
+                let r = radius
+                    + 1_000.0 * (k1 * t).sin()
+                    + 100.0 * (k2 * t).sin()
+                    + 10.0 * (k3 * t).sin()
+                    + 4.0 * noise;
                 [500_000.0 + r * t.cos(), 6_000_000.0 + r * t.sin()]
             })
             .collect();

@@ -22,13 +22,13 @@
 use crate::decimal::Decimal;
 use crate::error::{Error, Result};
 use crate::format::{Circle, CircleTree, Params, MAX_STEPS};
-use crate::geometry::{orient, Pt, Shape};
-use crate::metrics::segment_max;
+use crate::geometry::{dist2_to_segment, orient, Pt, Shape};
+use crate::metrics::{segment_max, segment_max_in};
 use crate::reconstruct::{ring_spans, stroke_spans};
-use crate::validity::{problems, RingRef};
+use crate::validity::{problems_where, RingRef};
 use crate::{douglas_peucker, filter, medial};
-use rstar::primitives::{GeomWithData, Line};
-use rstar::{PointDistance, RTree};
+use rstar::primitives::Line;
+use rstar::RTree;
 
 /// Encoding parameters, in the units of the geometry's SRID.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -115,40 +115,140 @@ struct Entry {
     r: f64,
     anchor: usize,
     repaired: bool,
+    /// New, or next to a change, since the last check.
+    touched: bool,
 }
 
 struct RingState {
     pts: Vec<Pt>,
     part: usize,
     index: usize,
-    orig: RTree<GeomWithData<Line<[f64; 2]>, u32>>,
     entries: Vec<Entry>,
     circles: Vec<Circle>,
     recon: Vec<Pt>,
     span_of: Vec<u32>,
+    /// `starts[s]..starts[s + 1]`: the segments of `recon` that span `s` starts.
+    starts: Vec<usize>,
     fine: Vec<Pt>,
     fine_span_of: Vec<u32>,
-    vdist: Vec<f64>,
-    dirty: bool,
+    /// Spans whose stroke may differ from the last check.
+    dirty: Vec<bool>,
 }
 
-fn seg_tree(pts: &[Pt], ids: Option<&[u32]>) -> RTree<GeomWithData<Line<[f64; 2]>, u32>> {
-    let n = pts.len();
-    RTree::bulk_load(
-        (0..n)
-            .map(|i| {
-                GeomWithData::new(
-                    Line::new(pts[i], pts[(i + 1) % n]),
-                    ids.map_or(i as u32, |s| s[i]),
-                )
-            })
-            .collect(),
-    )
+/// Spans within this many of a touched circle are checked again. A span depends on the circles
+/// from one before it to two after it (the corner case reads the tangent after next), and the
+/// Hausdorff window reaches one span further either way.
+const DIRTY_REACH: usize = 3;
+
+/// Above this many target segments a window is searched through an R-tree, not by brute force.
+const BRUTE_FORCE_LIMIT: usize = 96;
+
+impl RingState {
+    fn m(&self) -> usize {
+        self.entries.len()
+    }
+
+    /// Spans whose original edges and strokes a span is measured against: itself and its two
+    /// neighbours (every span when there are at most three). Measuring against a subset can only
+    /// overestimate the distance, so a span that passes is within the bound globally too.
+    fn window(&self, s: usize) -> Vec<usize> {
+        let m = self.m();
+        if m <= 3 {
+            (0..m).collect()
+        } else {
+            vec![(s + m - 1) % m, s, (s + 1) % m]
+        }
+    }
+
+    /// Original vertex indices whose edge (to the next vertex) span `s` stands for.
+    fn orig_edges(&self, s: usize) -> std::ops::Range<usize> {
+        let (n, m) = (self.pts.len(), self.m());
+        if m == 1 {
+            return 0..n;
+        }
+        let a = self.entries[s].anchor;
+        let b = if s + 1 < m {
+            self.entries[s + 1].anchor
+        } else {
+            self.entries[0].anchor + n
+        };
+        a..b
+    }
+
+    fn orig_seg(&self, v: usize) -> (Pt, Pt) {
+        let n = self.pts.len();
+        (self.pts[v % n], self.pts[(v + 1) % n])
+    }
+
+    fn recon_seg(&self, i: usize) -> (Pt, Pt) {
+        let n = self.recon.len();
+        (self.recon[i], self.recon[(i + 1) % n])
+    }
+
+    fn window_orig(&self, s: usize) -> Vec<(Pt, Pt)> {
+        self.window(s)
+            .into_iter()
+            .flat_map(|t| self.orig_edges(t))
+            .map(|v| self.orig_seg(v))
+            .collect()
+    }
+
+    fn window_recon(&self, s: usize) -> Vec<(Pt, Pt)> {
+        self.window(s)
+            .into_iter()
+            .flat_map(|t| self.starts[t]..self.starts[t + 1])
+            .map(|i| self.recon_seg(i))
+            .collect()
+    }
+
+    /// Does every point of span `s`, and of the original edges it stands for, lie within
+    /// `target` of the other boundary (measured on the windows)?
+    fn span_fits(&self, s: usize, target: f64, eps: f64) -> bool {
+        let recon = self.window_recon(s);
+        let own_orig = self.orig_edges(s).map(|v| self.orig_seg(v));
+        if !all_within(&recon, own_orig, target, eps) {
+            return false;
+        }
+        let orig = self.window_orig(s);
+        let own_recon = (self.starts[s]..self.starts[s + 1]).map(|i| self.recon_seg(i));
+        all_within(&orig, own_recon, target, eps)
+    }
 }
 
-fn nearest(tree: &RTree<GeomWithData<Line<[f64; 2]>, u32>>, p: Pt) -> f64 {
-    tree.nearest_neighbor(&p)
-        .map_or(f64::INFINITY, |g| g.geom().distance_2(&p).sqrt())
+/// Is every segment of `from` within `target` (to `eps`) of the segments `to`?
+fn all_within(
+    to: &[(Pt, Pt)],
+    mut from: impl Iterator<Item = (Pt, Pt)>,
+    target: f64,
+    eps: f64,
+) -> bool {
+    if to.len() <= BRUTE_FORCE_LIMIT {
+        from.all(|(a, b)| segment_max_in(to, a, b, target, eps) <= target + eps)
+    } else {
+        let tree: RTree<Line<[f64; 2]>> =
+            RTree::bulk_load(to.iter().map(|&(c, d)| Line::new(c, d)).collect());
+        from.all(|(a, b)| segment_max(&tree, a, b, target, eps) <= target + eps)
+    }
+}
+
+/// Spans to check again: those within [`DIRTY_REACH`] of a touched circle.
+fn dirty_spans(entries: &[Entry]) -> Vec<bool> {
+    let m = entries.len();
+    let mut dirty = vec![false; m];
+    if m <= 2 * DIRTY_REACH + 1 {
+        if entries.iter().any(|e| e.touched) {
+            dirty.fill(true);
+        }
+        return dirty;
+    }
+    for (i, e) in entries.iter().enumerate() {
+        if e.touched {
+            for d in 0..=2 * DIRTY_REACH {
+                dirty[(i + m + d - DIRTY_REACH) % m] = true;
+            }
+        }
+    }
+    dirty
 }
 
 /// Stroke spans and drop repeated points, as the decoder does, keeping each point's span.
@@ -168,15 +268,6 @@ fn stroke_dedup(spans: &crate::reconstruct::Spans, tol: f64) -> (Vec<Pt>, Vec<u3
         ri.pop();
     }
     (rp, ri)
-}
-
-fn span_of_vertex(entries: &[Entry], v: usize) -> usize {
-    let k = entries.partition_point(|e| e.anchor <= v);
-    if k == 0 {
-        entries.len() - 1
-    } else {
-        k - 1
-    }
 }
 
 enum Outcome {
@@ -293,6 +384,7 @@ fn initial_entries(
             r: m.r,
             anchor: m.start,
             repaired: false,
+            touched: true,
         })
         .collect();
     if let Some(dp) = opts.dp_tolerance {
@@ -311,6 +403,7 @@ fn initial_entries(
                     r: 0.0,
                     anchor: v,
                     repaired: false,
+                    touched: true,
                 });
                 report.dp_points += 1;
             }
@@ -326,6 +419,7 @@ fn initial_entries(
                 r: 0.0,
                 anchor: v,
                 repaired: true,
+                touched: true,
             });
         }
     }
@@ -361,15 +455,14 @@ fn encode_with_grid(
                 pts: ring.clone(),
                 part: pi,
                 index: ri,
-                orig: seg_tree(ring, None),
                 entries,
                 circles: vec![],
                 recon: vec![],
                 span_of: vec![],
+                starts: vec![],
                 fine: vec![],
                 fine_span_of: vec![],
-                vdist: vec![],
-                dirty: true,
+                dirty: vec![],
             });
         }
     }
@@ -382,10 +475,13 @@ fn encode_with_grid(
         interrupt();
         let mut failing: Vec<Vec<usize>> = vec![Vec::new(); rings.len()];
         for (k, st) in rings.iter_mut().enumerate() {
-            if !st.dirty {
+            st.dirty = dirty_spans(&st.entries);
+            if !st.dirty.iter().any(|&d| d) {
                 continue;
             }
-            st.dirty = false;
+            for e in &mut st.entries {
+                e.touched = false;
+            }
             st.circles = st
                 .entries
                 .iter()
@@ -405,22 +501,14 @@ fn encode_with_grid(
             // Validity is also checked close to the true arcs, so that decoding with any arc
             // tolerance up to the grid step, or with true arcs, stays valid.
             (st.fine, st.fine_span_of) = stroke_dedup(&spans, g / 100.0);
-            // Hausdorff, both ways
-            let n = st.pts.len();
-            let rtree = seg_tree(&st.recon, Some(&st.span_of));
-            st.vdist = st.pts.iter().map(|&p| nearest(&rtree, p)).collect();
+            st.starts = (0..=st.m())
+                .map(|s| st.span_of.partition_point(|&x| (x as usize) < s))
+                .collect();
+            // Hausdorff, both ways, span by span
             let eps = g * 1e-3;
-            for v in 0..n {
-                let w = (v + 1) % n;
-                if segment_max(&rtree, st.pts[v], st.pts[w], target, eps) > target + eps {
-                    failing[k].push(span_of_vertex(&st.entries, v));
-                }
-            }
-            let m = st.recon.len();
-            for i in 0..m {
-                let j = (i + 1) % m;
-                if segment_max(&st.orig, st.recon[i], st.recon[j], target, eps) > target + eps {
-                    failing[k].push(st.span_of[i] as usize);
+            for s in 0..st.m() {
+                if st.dirty[s] && !st.span_fits(s, target, eps) {
+                    failing[k].push(s);
                 }
             }
         }
@@ -434,7 +522,16 @@ fn encode_with_grid(
                     pts: if fine { &r.fine } else { &r.recon },
                 })
                 .collect();
-            for (k, seg) in problems(&refs, interrupt) {
+            let changed: Vec<Vec<bool>> = rings
+                .iter()
+                .map(|r| {
+                    let ids = if fine { &r.fine_span_of } else { &r.span_of };
+                    ids.iter()
+                        .map(|&s| r.dirty.get(s as usize).copied().unwrap_or(true))
+                        .collect()
+                })
+                .collect();
+            for (k, seg) in problems_where(&refs, Some(&changed), interrupt) {
                 let ids = if fine {
                     &rings[k].fine_span_of
                 } else {
@@ -465,7 +562,6 @@ fn encode_with_grid(
             spans.dedup();
             let st = &mut rings[k];
             if repair(st, &spans, target, hurry) {
-                st.dirty = true;
                 progress = true;
             }
         }
@@ -487,6 +583,7 @@ fn repair(st: &mut RingState, spans: &[usize], target: f64, hurry: bool) -> bool
         r: 0.0,
         anchor: v,
         repaired: true,
+        touched: true,
     };
     for &i in spans {
         if i >= m {
@@ -522,15 +619,36 @@ fn repair(st: &mut RingState, spans: &[usize], target: f64, hurry: bool) -> bool
             }
             continue;
         }
+        // the interior vertex farthest from the stroke, if it is far; else the middle one
+        let recon = st.window_recon(i);
+        let far = |v: usize| {
+            recon
+                .iter()
+                .map(|&(c, d)| dist2_to_segment(st.pts[v], c, d))
+                .fold(f64::INFINITY, f64::min)
+        };
         let best = interior
             .iter()
-            .copied()
-            .max_by(|&x, &y| st.vdist[x].total_cmp(&st.vdist[y]));
+            .map(|&v| (far(v), v))
+            .max_by(|x, y| x.0.total_cmp(&y.0));
         let v = match best {
-            Some(v) if st.vdist[v] > target * 0.5 => v,
+            Some((d2, v)) if d2 > (target * 0.5).powi(2) => v,
             _ => interior[interior.len() / 2],
         };
         add.push(point(v));
+    }
+    // Failing spans are checked again next round even where nothing could be done (then the
+    // round makes no progress and the grid is refined); neighbours of a removed circle change.
+    for &i in spans {
+        if i < m {
+            st.entries[i].touched = true;
+            st.entries[(i + 1) % m].touched = true;
+        }
+    }
+    let removed_at: Vec<usize> = (0..m).filter(|&i| remove[i]).collect();
+    for i in removed_at {
+        st.entries[(i + m - 1) % m].touched = true;
+        st.entries[(i + 1) % m].touched = true;
     }
     let before = st.entries.len();
     let removed = remove.iter().filter(|&&r| r).count();

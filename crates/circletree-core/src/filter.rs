@@ -17,8 +17,8 @@
 
 use crate::geometry::{dist, Pt};
 use crate::medial::Candidate;
-use rstar::primitives::GeomWithData;
-use rstar::{RTree, AABB};
+use rstar::primitives::{GeomWithData, Rectangle};
+use rstar::{RTree, RTreeObject};
 
 /// A kept circle and the run of ring edges it stands for: edges `start .. start + len` (modulo n).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -94,7 +94,7 @@ pub fn map_runs(ring: &[Pt], cands: &[Candidate], min_radius: f64, tol: f64) -> 
     // Nearly identical circles (cocircular vertices give many) would map the same long runs again
     // and again: keep one per cell of a quarter of the tolerance in centre and radius.
     let cell = (tol / 4.0).max(f64::MIN_POSITIVE);
-    let mut seen_circles = std::collections::HashSet::new();
+    let mut seen_circles = rustc_hash::FxHashSet::default();
     for cand in cands {
         if cand.r.abs() < min_radius {
             continue;
@@ -107,9 +107,11 @@ pub fn map_runs(ring: &[Pt], cands: &[Candidate], min_radius: f64, tol: f64) -> 
         if !seen_circles.insert(key) {
             continue;
         }
-        let mut seen: Vec<(usize, usize)> = Vec::with_capacity(3);
+        // runs already mapped from this candidate's other vertices (three at most)
+        let mut seen = [(0usize, 0usize); 3];
+        let mut nseen = 0;
         for &seed in &cand.verts {
-            if seen.iter().any(|&(s, l)| (seed + n - s) % n <= l) {
+            if seen[..nseen].iter().any(|&(s, l)| (seed + n - s) % n <= l) {
                 continue;
             }
             let (s0, l0) = run_at(ring, cand.c, cand.r, seed, tol);
@@ -131,7 +133,8 @@ pub fn map_runs(ring: &[Pt], cands: &[Candidate], min_radius: f64, tol: f64) -> 
             if rho.abs() < min_radius || l < 2 {
                 continue;
             }
-            seen.push((s, l));
+            seen[nseen] = (s, l);
+            nseen += 1;
             out.push(Mapped {
                 c: cand.c,
                 r: rho,
@@ -148,43 +151,40 @@ pub fn select(n: usize, mut runs: Vec<Mapped>, overlap: f64) -> Vec<Mapped> {
     runs.sort_by(|a, b| b.len.cmp(&a.len).then(a.r.abs().total_cmp(&b.r.abs())));
     let mut covered = vec![false; n];
     let mut kept: Vec<Mapped> = Vec::new();
-    let mut tree: RTree<GeomWithData<[f64; 2], usize>> = RTree::new();
-    let mut max_r: f64 = 0.0;
+    // kept circles by their bounding boxes: two circles can only meet where their boxes do
+    let mut tree: RTree<GeomWithData<Rectangle<[f64; 2]>, usize>> = RTree::new();
     for m in runs {
         let new = (0..m.len).filter(|&k| !covered[(m.start + k) % n]).count();
         if new < 2 {
             continue;
         }
         let r = m.r.abs();
-        let reach = r + max_r;
-        let env = AABB::from_corners(
-            [m.c[0] - reach, m.c[1] - reach],
-            [m.c[0] + reach, m.c[1] + reach],
-        );
-        let clash = tree.locate_in_envelope(&env).any(|g| {
-            let o = kept[g.data];
-            if o.c == m.c && o.r == m.r {
-                return false; // the same circle, another run of it
-            }
-            let ro = o.r.abs();
-            let d = dist(o.c, m.c);
-            let depth = r + ro - d;
-            if depth <= 0.0 {
-                return false;
-            }
-            if o.r.signum() != m.r.signum() || d + r.min(ro) <= r.max(ro) {
-                return true;
-            }
-            depth / (2.0 * r.min(ro)) > overlap
-        });
+        let bbox = Rectangle::from_corners([m.c[0] - r, m.c[1] - r], [m.c[0] + r, m.c[1] + r]);
+        let clash = tree
+            .locate_in_envelope_intersecting(&bbox.envelope())
+            .any(|g| {
+                let o = kept[g.data];
+                if o.c == m.c && o.r == m.r {
+                    return false; // the same circle, another run of it
+                }
+                let ro = o.r.abs();
+                let d = dist(o.c, m.c);
+                let depth = r + ro - d;
+                if depth <= 0.0 {
+                    return false;
+                }
+                if o.r.signum() != m.r.signum() || d + r.min(ro) <= r.max(ro) {
+                    return true;
+                }
+                depth / (2.0 * r.min(ro)) > overlap
+            });
         if clash {
             continue;
         }
         for k in 0..m.len {
             covered[(m.start + k) % n] = true;
         }
-        tree.insert(GeomWithData::new(m.c, kept.len()));
-        max_r = max_r.max(r);
+        tree.insert(GeomWithData::new(bbox, kept.len()));
         kept.push(m);
     }
     kept

@@ -141,19 +141,30 @@ pub fn dedup_ring(ring: &mut Ring) {
 /// Euclidean distance.
 #[inline]
 pub fn dist(a: Pt, b: Pt) -> f64 {
-    (a[0] - b[0]).hypot(a[1] - b[1])
+    // Coordinates are far below 1e150: the squares cannot overflow, and `sqrt` is several
+    // times faster than `hypot`.
+    let (dx, dy) = (a[0] - b[0], a[1] - b[1]);
+    (dx * dx + dy * dy).sqrt()
 }
 
 /// Distance from `p` to the segment `a`-`b`.
 #[inline]
 pub fn dist_to_segment(p: Pt, a: Pt, b: Pt) -> f64 {
+    dist2_to_segment(p, a, b).sqrt()
+}
+
+/// Squared distance from `p` to the segment `a`-`b`.
+#[inline]
+pub fn dist2_to_segment(p: Pt, a: Pt, b: Pt) -> f64 {
     let d = [b[0] - a[0], b[1] - a[1]];
     let len2 = d[0] * d[0] + d[1] * d[1];
-    if len2 == 0.0 {
-        return dist(p, a);
-    }
-    let t = (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0);
-    dist(p, [a[0] + t * d[0], a[1] + t * d[1]])
+    let t = if len2 == 0.0 {
+        0.0
+    } else {
+        (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
+    };
+    let (dx, dy) = (p[0] - a[0] - t * d[0], p[1] - a[1] - t * d[1]);
+    dx * dx + dy * dy
 }
 
 #[cfg(test)]

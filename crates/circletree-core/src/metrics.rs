@@ -9,7 +9,7 @@
 //! PostGIS's `ST_HausdorffDistance` is discrete (vertices only) and can only be lower.
 
 use crate::format::CircleTree;
-use crate::geometry::{dist, Polygon, Pt};
+use crate::geometry::{dist, dist2_to_segment, dist_to_segment, Polygon, Pt};
 use geo::{Area, BooleanOps};
 use rstar::primitives::Line;
 use rstar::{PointDistance, RTree};
@@ -31,18 +31,62 @@ fn segments(rings: &[&[Pt]]) -> Vec<Line<[f64; 2]>> {
 }
 
 /// The largest distance from a point of segment `a-b` to the objects of `tree`, or `floor` if
-/// that is larger, to within `eps`. Two bounds prune the search: distance is 1-Lipschitz
-/// (`d(x) ≤ (d(a) + d(b) + |ab|) / 2`), and the distance to one fixed object is convex along the
-/// segment (`d(x) ≤ max(d(a, s), d(b, s))` for the object `s` nearest the midpoint), which is
-/// tight where the segment runs parallel to the boundary it is measured against.
+/// that is larger, to within `eps`. See [`segment_max_by`].
 pub fn segment_max<T>(tree: &RTree<T>, a: Pt, b: Pt, floor: f64, eps: f64) -> f64
 where
     T: PointDistance + rstar::RTreeObject<Envelope = rstar::AABB<[f64; 2]>>,
 {
-    let d = |p: Pt| {
-        tree.nearest_neighbor(&p)
-            .map_or(f64::INFINITY, |s| s.distance_2(&p).sqrt())
-    };
+    segment_max_by(
+        |p| {
+            tree.nearest_neighbor(&p)
+                .map(|s| (s.distance_2(&p).sqrt(), s))
+        },
+        |s, a, b| s.distance_2(&a).max(s.distance_2(&b)).sqrt(),
+        a,
+        b,
+        floor,
+        eps,
+    )
+}
+
+/// The largest distance from a point of segment `a-b` to the segments of `to` (a short list,
+/// searched by brute force), or `floor` if that is larger, to within `eps`.
+pub fn segment_max_in(to: &[(Pt, Pt)], a: Pt, b: Pt, floor: f64, eps: f64) -> f64 {
+    segment_max_by(
+        |p| {
+            to.iter()
+                .map(|&(c, d)| dist2_to_segment(p, c, d))
+                .enumerate()
+                .min_by(|x, y| x.1.total_cmp(&y.1))
+                .map(|(i, d2)| (d2.sqrt(), i))
+        },
+        |&i, a, b| {
+            let (c, d) = to[i];
+            dist_to_segment(a, c, d).max(dist_to_segment(b, c, d))
+        },
+        a,
+        b,
+        floor,
+        eps,
+    )
+}
+
+/// Branch and bound for the largest distance along segment `a-b`. `nearest(p)` gives the distance
+/// from `p` to the target set and the object that realises it; `far(o, a, b)` the larger distance
+/// from `a` or `b` to that one object. Two bounds prune the search: distance is 1-Lipschitz
+/// (`d(x) ≤ (d(a) + d(b) + |ab|) / 2`), and the distance to one fixed object is convex along the
+/// segment (`d(x) ≤ max(d(a, s), d(b, s))` for the object `s` nearest the midpoint), which is
+/// tight where the segment runs parallel to the boundary it is measured against.
+/// An empty target set gives infinity.
+pub fn segment_max_by<O>(
+    nearest: impl Fn(Pt) -> Option<(f64, O)>,
+    far: impl Fn(&O, Pt, Pt) -> f64,
+    a: Pt,
+    b: Pt,
+    floor: f64,
+    eps: f64,
+) -> f64 {
+    let d = |p: Pt| nearest(p).map_or(f64::INFINITY, |(d, _)| d);
     let (da, db) = (d(a), d(b));
     let mut best = floor.max(da).max(db);
     let mut stack = vec![(a, b, da, db, 0u32)];
@@ -52,12 +96,11 @@ where
             continue;
         }
         let m = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
-        let Some(s) = tree.nearest_neighbor(&m) else {
+        let Some((dm, s)) = nearest(m) else {
             return f64::INFINITY;
         };
-        let dm = s.distance_2(&m).sqrt();
         best = best.max(dm);
-        if s.distance_2(&a).max(s.distance_2(&b)).sqrt() <= best + eps {
+        if far(&s, a, b) <= best + eps {
             continue;
         }
         stack.push((a, m, da, dm, depth + 1));

@@ -65,9 +65,93 @@ pub fn point_in_ring(p: Pt, ring: &[Pt]) -> bool {
     inside
 }
 
+/// The grid cells that changed segments touch, so that unchanged segments far from every change
+/// skip the tree lookup (a few changes among a million segments is the common case after the
+/// first round). Cells are a few times the typical changed segment; only touched cells are stored.
+struct NearHot {
+    cell: f64,
+    marked: rustc_hash::FxHashSet<(i64, i64)>,
+}
+
+impl NearHot {
+    /// Most cells marked for one envelope; a larger envelope lets everything pass.
+    const MAX_CELLS: i64 = 1 << 12;
+
+    fn new(hot: &[GeomWithData<Rectangle<Pt>, (usize, usize)>], total: usize) -> Option<Self> {
+        if hot.is_empty() || hot.len() * 4 > total {
+            return None;
+        }
+        let mut sizes: Vec<f64> = hot
+            .iter()
+            .map(|g| {
+                let e = g.envelope();
+                (e.upper()[0] - e.lower()[0]).max(e.upper()[1] - e.lower()[1])
+            })
+            .collect();
+        let mid = sizes.len() / 2;
+        let (_, median, _) = sizes.select_nth_unstable_by(mid, f64::total_cmp);
+        let cell = 4.0 * *median;
+        if !(cell.is_finite() && cell > 0.0) {
+            return None;
+        }
+        let mut grid = NearHot {
+            cell,
+            marked: rustc_hash::FxHashSet::default(),
+        };
+        for g in hot {
+            let (x0, y0, x1, y1) = grid.cells(&g.envelope())?;
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    grid.marked.insert((x, y));
+                }
+            }
+        }
+        Some(grid)
+    }
+
+    /// Cell range of an envelope; `None` when it is too large to mark.
+    fn cells(&self, env: &rstar::AABB<Pt>) -> Option<(i64, i64, i64, i64)> {
+        let f = |v: f64| (v / self.cell).floor() as i64;
+        let (lo, hi) = (env.lower(), env.upper());
+        let (x0, y0, x1, y1) = (f(lo[0]), f(lo[1]), f(hi[0]), f(hi[1]));
+        ((x1 - x0 + 1).saturating_mul(y1 - y0 + 1) <= Self::MAX_CELLS).then_some((x0, y0, x1, y1))
+    }
+}
+
+trait MayMeet {
+    fn may_meet(&self, env: &rstar::AABB<Pt>) -> bool;
+}
+
+impl MayMeet for Option<NearHot> {
+    /// Could a segment with this envelope meet a changed one? (`true` when unsure.)
+    fn may_meet(&self, env: &rstar::AABB<Pt>) -> bool {
+        let Some(g) = self else {
+            return true;
+        };
+        let Some((x0, y0, x1, y1)) = g.cells(env) else {
+            return true;
+        };
+        (y0..=y1).any(|y| (x0..=x1).any(|x| g.marked.contains(&(x, y))))
+    }
+}
+
 /// Problems found: `(ring index in the input slice, segment index)`; `usize::MAX` as the segment
 /// means the whole ring (degenerate, or misplaced).
 pub fn problems(rings: &[RingRef], interrupt: &mut dyn FnMut()) -> Vec<(usize, usize)> {
+    problems_where(rings, None, interrupt)
+}
+
+/// [`problems`], when only some segments changed since a check that found none: `changed[k][i]`
+/// marks segment `i` of ring `k`. Pairs of unchanged segments are not looked at again; whole-ring
+/// checks (area, nesting) always run.
+pub fn problems_where(
+    rings: &[RingRef],
+    changed: Option<&[Vec<bool>]>,
+    interrupt: &mut dyn FnMut(),
+) -> Vec<(usize, usize)> {
+    let is_changed = |k: usize, i: usize| {
+        changed.is_none_or(|c| c.get(k).and_then(|r| r.get(i)) != Some(&false))
+    };
     let mut bad = Vec::new();
     let mut items = Vec::new();
     for (k, r) in rings.iter().enumerate() {
@@ -82,18 +166,30 @@ pub fn problems(rings: &[RingRef], interrupt: &mut dyn FnMut()) -> Vec<(usize, u
         }
     }
     interrupt();
-    let tree = RTree::bulk_load(items);
-    for (count, item) in tree.iter().enumerate() {
+    // Every segment is looked up in a tree of the changed ones (all of them on a first check):
+    // each pair with a changed segment is met once, and a small tree is cheap to build.
+    let hot: Vec<_> = items
+        .iter()
+        .filter(|g| is_changed(g.data.0, g.data.1))
+        .cloned()
+        .collect();
+    let near = NearHot::new(&hot, items.len());
+    let tree = RTree::bulk_load(hot);
+    for (count, item) in items.iter().enumerate() {
         if count % 8192 == 0 {
             interrupt();
         }
         let (k, i) = item.data;
+        let item_changed = is_changed(k, i);
+        if !item_changed && !near.may_meet(&item.envelope()) {
+            continue;
+        }
         let pts = rings[k].pts;
         let n = pts.len();
         let (a, b) = (pts[i], pts[(i + 1) % n]);
         for other in tree.locate_in_envelope_intersecting(&item.geom().envelope()) {
             let (k2, j) = other.data;
-            if (k2, j) <= (k, i) {
+            if item_changed && (k2, j) <= (k, i) {
                 continue;
             }
             let p2 = rings[k2].pts;
