@@ -168,6 +168,12 @@ fn _ct_hausdorff_wkb(ct: CircleTree, wkb: &[u8]) -> f64 {
     circletree_core::metrics::value_hausdorff(&ct.value, &original(wkb), &mut interrupt)
 }
 
+/// Continuous Hausdorff distance between the boundaries of two (Multi)Polygons (WKB).
+#[pg_extern(immutable, strict, parallel_safe)]
+fn _ct_hausdorff_wkb2(a: &[u8], b: &[u8]) -> f64 {
+    circletree_core::metrics::shape_hausdorff(&original(a), &original(b), &mut interrupt)
+}
+
 /// ct_memsize(ct) over the original's WKB bytes, both recorded in the value.
 #[pg_extern(immutable, strict, parallel_safe)]
 fn ct_storage_ratio(ct: CircleTree) -> Option<f64> {

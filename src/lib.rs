@@ -45,6 +45,10 @@ CREATE FUNCTION ct_sliver_ratio(ct circletree, geom geometry) RETURNS float8
 CREATE FUNCTION ct_hausdorff(ct circletree, geom geometry) RETURNS float8
     LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
     AS $$ SELECT _ct_hausdorff_wkb($1, ST_AsBinary($2)) $$;
+-- The same measure between any two (Multi)Polygons, to compare other simplifications fairly.
+CREATE FUNCTION ct_hausdorff(a geometry, b geometry) RETURNS float8
+    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
+    AS $$ SELECT _ct_hausdorff_wkb2(ST_AsBinary($1), ST_AsBinary($2)) $$;
 
 -- The paper's experiment (figures 11-14) on one polygon: every combination of the three arrays.
 CREATE FUNCTION ct_sweep(geom geometry,

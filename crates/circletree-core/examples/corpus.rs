@@ -36,8 +36,8 @@ fn main() {
                     all.iter().filter(|c| c.r > 0).count(),
                     all.iter().filter(|c| c.r < 0).count(),
                 );
-                println!("{:28} n={:6} circles={:6} int={:5} ext={:5} zero={:6} repaired={:6} filt={:5} dp={:5} rounds={:3} bytes={:7} wkb={:8} ratio={:.3} {:.3}s",
-                    s.name, s.npoints, all.len(), i, e, all.len() - i - e, ct.repaired, rep.filtered_circles, rep.dp_points, rep.rounds, b, s.wkb.len(), b as f64 / s.wkb.len() as f64, dt);
+                println!("{:28} n={:6} circles={:6} int={:5} ext={:5} zero={:6} repaired={:6} filt={:5} dp={:5} rounds={:3} grid={} bytes={:7} wkb={:8} ratio={:.3} {:.3}s",
+                    s.name, s.npoints, all.len(), i, e, all.len() - i - e, ct.repaired, rep.filtered_circles, rep.dp_points, rep.rounds, ct.grid, b, s.wkb.len(), b as f64 / s.wkb.len() as f64, dt);
             }
             Err(e) => println!("{:28} ERROR {e}", s.name),
         }

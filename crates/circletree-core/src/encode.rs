@@ -137,8 +137,13 @@ struct RingState {
 
 /// Spans within this many of a touched circle are checked again. A span depends on the circles
 /// from one before it to two after it (the corner case reads the tangent after next), and the
-/// Hausdorff window reaches one span further either way.
-const DIRTY_REACH: usize = 3;
+/// Hausdorff window reaches [`WINDOW`] spans further either way.
+const DIRTY_REACH: usize = WINDOW + 2;
+
+/// A span is measured against the spans this many before and after it, too. Two, not one: circles
+/// whose vertices round to the same grid point leave a span with no stroke of its own, and its
+/// neighbour's stroke then reaches across it.
+const WINDOW: usize = 2;
 
 /// Above this many target segments a window is searched through an R-tree, not by brute force.
 const BRUTE_FORCE_LIMIT: usize = 96;
@@ -148,15 +153,15 @@ impl RingState {
         self.entries.len()
     }
 
-    /// Spans whose original edges and strokes a span is measured against: itself and its two
-    /// neighbours (every span when there are at most three). Measuring against a subset can only
-    /// overestimate the distance, so a span that passes is within the bound globally too.
+    /// Spans whose original edges and strokes a span is measured against: itself and [`WINDOW`]
+    /// neighbours either side (every span when there are no more). Measuring against a subset can
+    /// only overestimate the distance, so a span that passes is within the bound globally too.
     fn window(&self, s: usize) -> Vec<usize> {
         let m = self.m();
-        if m <= 3 {
+        if m <= 2 * WINDOW + 1 {
             (0..m).collect()
         } else {
-            vec![(s + m - 1) % m, s, (s + 1) % m]
+            (0..=2 * WINDOW).map(|d| (s + m + d - WINDOW) % m).collect()
         }
     }
 

@@ -144,6 +144,19 @@ pub fn hausdorff(a: &[&[Pt]], b: &[&[Pt]], eps: f64, interrupt: &mut dyn FnMut()
     directed_hausdorff(a, b, eps, interrupt).max(directed_hausdorff(b, a, eps, interrupt))
 }
 
+/// Hausdorff distance between the boundaries of two polygon sets (straight segments only), to
+/// within a billionth of their extent.
+pub fn shape_hausdorff(a: &[Polygon], b: &[Polygon], interrupt: &mut dyn FnMut()) -> f64 {
+    let ra: Vec<&[Pt]> = a.iter().flatten().map(|r| r.as_slice()).collect();
+    let rb: Vec<&[Pt]> = b.iter().flatten().map(|r| r.as_slice()).collect();
+    let extent = ra
+        .iter()
+        .chain(&rb)
+        .flat_map(|r| r.iter())
+        .fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs()));
+    hausdorff(&ra, &rb, (extent * 1e-9).max(1e-12), interrupt)
+}
+
 /// The tolerance arcs are stroked to when a value is measured: a hundredth of the grid step.
 pub fn measure_tolerance(ct: &CircleTree) -> f64 {
     ct.grid_f64() / 100.0

@@ -15,6 +15,20 @@ SELECT count(*) FILTER (WHERE abs(ct_sliver_error(ct, geom) - ST_Area(ST_SymDiff
 SELECT count(*) AS polygons,
        count(*) FILTER (WHERE ct_hausdorff(ct, geom) + 1e-6 >= ST_HausdorffDistance(ct_decode(ct, (ct_summary(ct)->>'grid')::float8 / 100), geom)) AS not_below
   FROM m WHERE ST_NPoints(geom) <= 2000;
+-- ct_hausdorff(geometry, geometry): the same continuous measure between any two polygons.
+-- A square against itself, and against the square with one edge pushed out by 2 in its middle
+-- (a tent): the farthest point is the tent's apex, 2 away. (Literals need ::geometry: the
+-- circletree overload makes an untyped first argument ambiguous.)
+SELECT ct_hausdorff('POLYGON((0 0,10 0,10 10,0 10,0 0))'::geometry, 'POLYGON((0 0,10 0,10 10,0 10,0 0))'::geometry) AS same,
+       round(ct_hausdorff('POLYGON((0 0,10 0,10 10,0 10,0 0))'::geometry, 'POLYGON((0 0,5 -2,10 0,10 10,0 10,0 0))'::geometry)::numeric, 9) AS tent,
+       -- the middle of the top edge, not a vertex, is farthest: 5/sqrt(26) from the dented square
+       round(ct_hausdorff('POLYGON((0 0,10 0,10 10,0 10,0 0))'::geometry, 'POLYGON((0 0,10 0,10 10,5 9,0 10,0 0))'::geometry)::numeric, 9) AS dent,
+       round((5 / sqrt(26))::numeric, 9) AS dent_exact;
+-- on ST_Simplify results: never below PostGIS's discrete measure (vertices only)
+SELECT count(*) AS polygons,
+       count(*) FILTER (WHERE ct_hausdorff(s, geom) + 1e-6 >= ST_HausdorffDistance(s, geom)) AS not_below
+  FROM (SELECT geom, ST_Simplify(geom, 50, true) AS s FROM coast WHERE ST_NPoints(geom) <= 2000) x;
+SELECT sqlstate_of($$SELECT ct_hausdorff('LINESTRING(0 0,1 1)'::geometry, 'POLYGON((0 0,1 0,1 1,0 0))'::geometry)$$) AS linestring;
 -- the paper's experiment on Kapiti Island, a slice of it (ct_sweep with its default arrays runs all 150)
 SELECT min_radius, overlap, dp_tolerance, circles, internal, external, zero, added_by_repair, bytes, valid,
        hausdorff <= greatest(min_radius, coalesce(dp_tolerance, 0)) AS within_bound

@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Regenerates BENCHMARKS.md (and docs/paper_experiment.svg) from this commit: release build and
+# install into the local PostgreSQL 15, load the 55 public polygons, run bench/benchmarks.sql
+# (sizes and errors against ST_Simplify + TWKB, the paper's experiment, speed against PostGIS's
+# functions), time the encoder alone on one synthetic coastline of 1e3 .. 1e6 vertices (time and
+# peak memory), then write the report with scripts/bench_report.py. About 10 minutes on 2 cores.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+source scripts/setup.sh
+
+echo "== building and installing circletree (release)"
+cargo pgrx install --release --pg-config "$PG_CONFIG" </dev/null
+cargo build --release -q -p circletree-core --example scaling </dev/null
+
+out=$(mktemp -d)
+db=circletree_bench
+psql -X -q -d postgres -c "DROP DATABASE IF EXISTS $db" -c "CREATE DATABASE $db"
+psql -X -q -v ON_ERROR_STOP=1 -d "$db" <<'SQL'
+SET client_min_messages = warning;
+CREATE EXTENSION circletree CASCADE;
+CREATE TABLE poly(name text, source text, srid int, npoints int, wkt text);
+\copy poly FROM PROGRAM 'gzip -dc tests/data/polygons.tsv.gz' WITH (FORMAT csv, DELIMITER E'\t', HEADER true, QUOTE E'\x01')
+CREATE TABLE coast AS SELECT name, source, npoints, ST_GeomFromText(wkt, srid) AS geom FROM poly;
+SQL
+start=$(date +%s)
+psql -X -q -v ON_ERROR_STOP=1 -d "$db" -f bench/benchmarks.sql
+for t in bench_sizes bench_sweep bench_speed; do
+  psql -X -q -v ON_ERROR_STOP=1 -d "$db" -c "\\copy $t TO STDOUT WITH (FORMAT csv, HEADER true)" >"$out/$t.csv"
+done
+echo "== SQL benchmarks took $(($(date +%s) - start)) s"
+
+echo "== scaling: encode one synthetic coastline (time and peak memory)"
+echo "n,seconds,peak_kb,circles,bytes,wkb" >"$out/scaling.csv"
+for n in 1000 10000 100000 1000000; do
+  line=$(/usr/bin/time -f "TIME %e %M" target/release/examples/scaling "$n" 2>&1)
+  echo "$line"
+  python3 - "$line" >>"$out/scaling.csv" <<'PY'
+import re, sys
+s = sys.argv[1]
+n = re.search(r"n=\s*(\d+)", s).group(1)
+circles = re.search(r"circles=(\d+)", s).group(1)
+size = re.search(r"bytes=(\d+)", s).group(1)
+wkb = re.search(r"wkb=(\d+)", s).group(1)
+secs = re.search(r"time=([\d.]+)s", s).group(1)
+peak = re.search(r"TIME [\d.]+ (\d+)", s).group(1)
+print(f"{n},{secs},{peak},{circles},{size},{wkb}")
+PY
+done
+
+{
+  echo "commit=$(git rev-parse --short HEAD)$(git diff --quiet HEAD -- . ':!BENCHMARKS.md' ':!docs/paper_experiment.svg' || echo '+changes')"
+  echo "cpu=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')"
+  echo "cores=$(nproc)"
+  echo "postgres=$(psql -X -At -d "$db" -c 'SHOW server_version')"
+  echo "postgis=$(psql -X -At -d "$db" -c 'SELECT postgis_lib_version()')"
+  echo "geos=$(psql -X -At -d "$db" -c 'SELECT postgis_geos_version()')"
+  echo "rustc=$(rustc --version)"
+  echo "date=$(date -u +%Y-%m-%d)"
+} >"$out/machine.txt"
+python3 scripts/bench_report.py "$out"
+echo "== wrote BENCHMARKS.md and docs/paper_experiment.svg (raw CSV in $out)"
