@@ -3,7 +3,7 @@
 # install into the local PostgreSQL 15, load the 55 public polygons, run bench/benchmarks.sql
 # (sizes and errors against ST_Simplify + TWKB, the paper's experiment, speed against PostGIS's
 # functions), time the encoder alone on one synthetic coastline of 1e3 .. 1e6 vertices (time and
-# peak memory), then write the report with scripts/bench_report.py. About 10 minutes on 2 cores.
+# peak memory), then write the report with scripts/bench_report.py. About 3 minutes after the build.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/setup.sh
