@@ -24,6 +24,8 @@ cargo pgrx test pg15 --runas postgres --pgdata "$pgdata" </dev/null
 
 echo "== pg_regress"
 cargo pgrx install --pg-config "$PG_CONFIG" </dev/null
+# Release 0.1.0's install script, frozen, so the upgrade test can start from it (regress `upgrade`).
+as_root install -m 644 tests/upgrade/circletree--0.1.0.sql "$($PG_CONFIG --sharedir)/extension/"
 out=$(mktemp -d)
 chmod 755 "$out"
 tests=$(cd tests/pg_regress/sql && ls *.sql | sed 's/\.sql$//' | grep -v '^setup$' | sort | tr '\n' ' ')

@@ -77,7 +77,7 @@ fn ct_summary(ct: CircleTree) -> pgrx::JsonB {
     let p = &v.params;
     let num = |d: circletree_core::decimal::Decimal| d.to_f64();
     pgrx::JsonB(json!({
-        "format_version": circletree_core::format::FORMAT_VERSION,
+        "format_version": v.version,
         "srid": v.srid,
         "kind": if v.kind == Kind::Polygon { "Polygon" } else { "MultiPolygon" },
         "parts": v.parts.len(),

@@ -16,7 +16,7 @@ fn main() {
         dp_tolerance: a.get(2).copied(),
         max_error: a.get(3).copied(),
     };
-    let (mut tb, mut tw, mut tt) = (0usize, 0usize, 0.0);
+    let (mut tb, mut tw, mut tt, mut t1) = (0usize, 0usize, 0.0, 0usize);
     let only: Vec<String> = std::env::var("CT_ONLY")
         .map(|v| v.split(',').map(String::from).collect())
         .unwrap_or_default();
@@ -29,6 +29,10 @@ fn main() {
         match res {
             Ok((ct, rep)) => {
                 let b = ct.to_bytes().len();
+                let mut old = ct.clone();
+                old.version = 1;
+                let b1 = old.to_bytes().len();
+                t1 += b1;
                 tb += b;
                 tw += s.wkb.len();
                 let all: Vec<_> = ct.parts.iter().flatten().flatten().collect();
@@ -36,14 +40,15 @@ fn main() {
                     all.iter().filter(|c| c.r > 0).count(),
                     all.iter().filter(|c| c.r < 0).count(),
                 );
-                println!("{:28} n={:6} circles={:6} int={:5} ext={:5} zero={:6} repaired={:6} filt={:5} dp={:5} rounds={:3} grid={} bytes={:7} wkb={:8} ratio={:.3} {:.3}s",
-                    s.name, s.npoints, all.len(), i, e, all.len() - i - e, ct.repaired, rep.filtered_circles, rep.dp_points, rep.rounds, ct.grid, b, s.wkb.len(), b as f64 / s.wkb.len() as f64, dt);
+                println!("{:28} n={:6} circles={:6} int={:5} ext={:5} zero={:6} repaired={:6} filt={:5} dp={:5} rounds={:3} grid={} bytes={:7} v1={:7} wkb={:8} ratio={:.3} {:.3}s",
+                    s.name, s.npoints, all.len(), i, e, all.len() - i - e, ct.repaired, rep.filtered_circles, rep.dp_points, rep.rounds, ct.grid, b, b1, s.wkb.len(), b as f64 / s.wkb.len() as f64, dt);
             }
             Err(e) => println!("{:28} ERROR {e}", s.name),
         }
     }
     println!(
-        "TOTAL bytes={tb} wkb={tw} ratio={:.4} time={tt:.2}s",
+        "TOTAL bytes={tb} v1={t1} v2/v1={:.3} wkb={tw} ratio={:.4} time={tt:.2}s",
+        tb as f64 / t1 as f64,
         tb as f64 / tw as f64
     );
 }

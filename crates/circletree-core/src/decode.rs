@@ -4,21 +4,14 @@
 use crate::error::{Error, Result};
 use crate::format::{Circle, CircleTree};
 use crate::geometry::{Kind, Polygon, Pt};
+use crate::grid::Grid;
 use crate::reconstruct::{ring_wkt, stroke_ring};
 
 /// Grid steps to coordinates: `q × mantissa / 10^k` in one correctly rounded operation.
+/// The value's grid ([`Grid::coord`] is the one conversion every reader and writer uses).
 pub fn scale(ct: &CircleTree) -> impl Fn(i64) -> f64 {
-    let m = ct.grid.mantissa as f64;
-    let e = ct.grid.exp as i32;
-    let p = 10f64.powi(e.abs());
-    move |q: i64| {
-        let v = q as f64 * m;
-        if e >= 0 {
-            v * p
-        } else {
-            v / p
-        }
-    }
+    let g = Grid::new(ct.grid);
+    move |q: i64| g.coord(q)
 }
 
 /// A ring's circles as `(x, y, ρ)` coordinates.
@@ -35,7 +28,7 @@ pub fn arc_tolerance(ct: &CircleTree, tol: Option<f64>) -> Result<f64> {
         Some(t) => Err(Error::InvalidParameter {
             name: "arc_tolerance",
             value: t.to_string(),
-            range: "a positive, finite length",
+            range: "a positive, finite length".into(),
         }),
     }
 }

@@ -14,7 +14,7 @@ pub enum Error {
         /// The value received, as text.
         value: String,
         /// The valid range, in words.
-        range: &'static str,
+        range: String,
     },
     /// The geometry is of a type circletree does not encode (SQLSTATE 22023).
     #[error("circletree encodes Polygon and MultiPolygon geometries, not {0}")]

@@ -7,6 +7,8 @@
 //! bytes), [`text`] (the text form), [`metrics`] (sliver area, Hausdorff).
 #![forbid(unsafe_code)]
 
+pub mod arcs;
+pub mod coder;
 pub mod decimal;
 pub mod decode;
 pub mod douglas_peucker;
@@ -15,10 +17,12 @@ pub mod error;
 pub mod filter;
 pub mod format;
 pub mod geometry;
+pub mod grid;
 pub mod medial;
 pub mod metrics;
 pub mod reconstruct;
 pub mod text;
+pub mod touch;
 pub mod validity;
 pub mod wkb;
 

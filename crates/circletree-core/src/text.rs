@@ -13,7 +13,7 @@
 
 use crate::decimal::Decimal;
 use crate::error::{Error, Result};
-use crate::format::{Circle, CircleTree, Params};
+use crate::format::{Circle, CircleTree, Params, VERSIONS};
 use crate::geometry::Kind;
 use std::fmt::Write;
 
@@ -36,8 +36,11 @@ pub fn to_text(ct: &CircleTree) -> String {
     let dp = p.dp_tolerance.map_or("NULL".to_string(), |d| d.to_string());
     let _ = write!(
         s,
-        "SRID={};CIRCLETREE(grid={};min_radius={};overlap={};dp_tolerance={};max_error={};vertices={};wkb_bytes={};repaired={};",
-        ct.srid, ct.grid, p.min_radius, p.overlap, dp, p.max_error, ct.vertices, ct.wkb_bytes, ct.repaired
+        "SRID={};CIRCLETREE({}grid={};min_radius={};overlap={};dp_tolerance={};max_error={};vertices={};wkb_bytes={};repaired={};",
+        ct.srid,
+        if ct.version == 1 { String::new() } else { format!("version={};", ct.version) },
+        ct.grid,
+        p.min_radius, p.overlap, dp, p.max_error, ct.vertices, ct.wkb_bytes, ct.repaired
     );
     if let Some(b) = ct.bbox {
         s.push_str("bbox=(");
@@ -222,6 +225,27 @@ pub fn from_text(s: &str) -> Result<CircleTree> {
     }
     p.expect_token("CIRCLETREE")?;
     p.expect_token("(")?;
+    // Absent in the text of version-1 values (release 0.1.0 printed none).
+    let version = if p.eat("version") {
+        p.expect_token("=")?;
+        let save = p.pos;
+        let v = p.uint("version")?;
+        match u8::try_from(v)
+            .ok()
+            .filter(|v| VERSIONS.contains(v) && *v != 1)
+        {
+            Some(v) => {
+                p.expect_token(";")?;
+                v
+            }
+            None => {
+                p.pos = save;
+                return p.err("format version 2 (version 1 values print no version)");
+            }
+        }
+    } else {
+        1
+    };
     let grid = p.param("grid")?;
     if grid.mantissa <= 0 {
         p.pos = s[..p.pos].rfind('=').map_or(p.pos, |i| i + 1);
@@ -282,6 +306,7 @@ pub fn from_text(s: &str) -> Result<CircleTree> {
         return p.err("the end of the value");
     }
     let ct = CircleTree {
+        version,
         srid,
         kind,
         grid,

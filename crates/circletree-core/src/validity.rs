@@ -1,13 +1,24 @@
-//! Is a set of rings a valid (Multi)Polygon boundary? No two segments may cross or touch except
-//! consecutive ones at their shared end point, and those may not fold back onto each other; every
-//! ring must enclose area; every hole must lie inside its shell and no part's shell inside another
-//! part. This is stricter than OGC validity (which lets rings touch at a point), so what passes
-//! here passes `ST_IsValid`. Segment pairs are found with an R-tree: O(n log n).
+//! Is a set of rings a valid (Multi)Polygon boundary, as OGC defines it? Within a ring, no two
+//! segments may cross or touch except consecutive ones at their shared end point, and those may not
+//! fold back onto each other (a ring is simple); every ring must enclose area; every hole must lie
+//! inside its shell and no part's shell inside another part. Two *different* rings may touch at
+//! isolated points, but only at the points the caller allows (the encoder allows exactly the touch
+//! points of the input, kept as shared vertices, so the interior stays connected as it was), only
+//! vertex to vertex, and without crossing there. Segment pairs are found with an R-tree:
+//! O(n log n). [`crate::arcs`] checks the true arcs between the stroked points.
 
 use crate::geometry::{signed_area, Pt};
 use robust::{orient2d, Coord};
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{RTree, RTreeObject};
+
+/// Points where two different rings may touch, by the bits of their coordinates.
+pub type Touches = rustc_hash::FxHashSet<[u64; 2]>;
+
+/// The key of a point in [`Touches`].
+pub fn touch_key(p: Pt) -> [u64; 2] {
+    [p[0].to_bits(), p[1].to_bits()]
+}
 
 /// A ring to check: its part, its index in the part (0 = shell) and its open points.
 pub struct RingRef<'a> {
@@ -138,7 +149,39 @@ impl MayMeet for Option<NearHot> {
 /// Problems found: `(ring index in the input slice, segment index)`; `usize::MAX` as the segment
 /// means the whole ring (degenerate, or misplaced).
 pub fn problems(rings: &[RingRef], interrupt: &mut dyn FnMut()) -> Vec<(usize, usize)> {
-    problems_where(rings, None, interrupt)
+    problems_where(rings, None, &Touches::default(), interrupt)
+}
+
+/// Is `q` strictly inside the sector swept counter-clockwise around `p` from ray `p→s` to ray
+/// `p→e`? (Exact predicates; `None` when `q` lies on either ray, in its direction.)
+fn in_sector(p: Pt, s: Pt, e: Pt, q: Pt) -> Option<bool> {
+    let same_dir = |r: Pt| {
+        o(p, r, q) == 0.0 && (r[0] - p[0]) * (q[0] - p[0]) + (r[1] - p[1]) * (q[1] - p[1]) > 0.0
+    };
+    if same_dir(s) || same_dir(e) {
+        return None;
+    }
+    let turn = o(p, s, e);
+    Some(if turn > 0.0 {
+        o(p, s, q) > 0.0 && o(p, q, e) > 0.0
+    } else if turn < 0.0 {
+        !(o(p, e, q) >= 0.0 && o(p, q, s) >= 0.0)
+    } else {
+        // s and e opposite (a straight ring): the left half-plane
+        o(p, s, q) > 0.0
+    })
+}
+
+/// Two rings meeting at a shared vertex `p` (ring A through `a_prev, p, a_next`, ring B through
+/// `b_prev, p, b_next`): do they only touch there (B's two neighbours on the same side of A)?
+pub fn touch_without_crossing(p: Pt, a_prev: Pt, a_next: Pt, b_prev: Pt, b_next: Pt) -> bool {
+    match (
+        in_sector(p, a_next, a_prev, b_prev),
+        in_sector(p, a_next, a_prev, b_next),
+    ) {
+        (Some(x), Some(y)) => x == y,
+        _ => false,
+    }
 }
 
 /// [`problems`], when only some segments changed since a check that found none: `changed[k][i]`
@@ -147,12 +190,15 @@ pub fn problems(rings: &[RingRef], interrupt: &mut dyn FnMut()) -> Vec<(usize, u
 pub fn problems_where(
     rings: &[RingRef],
     changed: Option<&[Vec<bool>]>,
+    allowed: &Touches,
     interrupt: &mut dyn FnMut(),
 ) -> Vec<(usize, usize)> {
     let is_changed = |k: usize, i: usize| {
         changed.is_none_or(|c| c.get(k).and_then(|r| r.get(i)) != Some(&false))
     };
     let mut bad = Vec::new();
+    // (ring, vertex, other ring, its vertex) where two rings share an allowed vertex
+    let mut touches: rustc_hash::FxHashSet<(usize, usize, usize, usize)> = Default::default();
     let mut items = Vec::new();
     for (k, r) in rings.iter().enumerate() {
         let n = r.pts.len();
@@ -213,21 +259,66 @@ pub fn problems_where(
                 }
                 continue;
             }
-            if segments_touch(a, b, c, d) {
-                bad.push((k, i));
-                bad.push((k2, j));
+            if !segments_touch(a, b, c, d) {
+                continue;
             }
+            if k != k2 {
+                // Different rings: a touch at one shared, allowed vertex is fine (whether they
+                // cross there is decided below from both rings' neighbours).
+                let shared = [
+                    (a, i, c, j),
+                    (a, i, d, (j + 1) % n2),
+                    (b, (i + 1) % n, c, j),
+                    (b, (i + 1) % n, d, (j + 1) % n2),
+                ]
+                .into_iter()
+                .find(|(x, _, y, _)| x == y);
+                if let Some((p, vi, _, vj)) = shared {
+                    let (x, y) = (if p == a { b } else { a }, if p == c { d } else { c });
+                    let overlap = o(p, x, y) == 0.0
+                        && (x[0] - p[0]) * (y[0] - p[0]) + (x[1] - p[1]) * (y[1] - p[1]) > 0.0;
+                    if !overlap && allowed.contains(&touch_key(p)) {
+                        touches.insert((k, vi, k2, vj));
+                        continue;
+                    }
+                }
+            }
+            bad.push((k, i));
+            bad.push((k2, j));
+        }
+    }
+    for &(k, vi, k2, vj) in &touches {
+        let (pa, pb) = (rings[k].pts, rings[k2].pts);
+        let (na, nb) = (pa.len(), pb.len());
+        if !touch_without_crossing(
+            pa[vi],
+            pa[(vi + na - 1) % na],
+            pa[(vi + 1) % na],
+            pb[(vj + nb - 1) % nb],
+            pb[(vj + 1) % nb],
+        ) {
+            bad.extend([
+                (k, vi),
+                (k, (vi + na - 1) % na),
+                (k2, vj),
+                (k2, (vj + nb - 1) % nb),
+            ]);
         }
     }
     if !bad.is_empty() {
         return bad;
     }
+    // A point of each ring that no other ring touches: the middle of its first segment.
+    let probe = |r: &RingRef| {
+        let (a, b) = (r.pts[0], r.pts[1 % r.pts.len()]);
+        [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0]
+    };
     // No crossings: check nesting. Holes inside their shell; a part's shell outside the other parts.
     let shell_of = |part: usize| rings.iter().position(|r| r.part == part && r.ring == 0);
     for (k, r) in rings.iter().enumerate() {
         if r.ring > 0 {
             if let Some(s) = shell_of(r.part) {
-                if !point_in_ring(r.pts[0], rings[s].pts) {
+                if !point_in_ring(probe(r), rings[s].pts) {
                     bad.push((k, usize::MAX));
                 }
             }
@@ -251,7 +342,7 @@ pub fn problems_where(
             })
             .collect();
         for (x, &kx) in shells.iter().enumerate() {
-            let p = rings[kx].pts[0];
+            let p = probe(&rings[kx]);
             for (y, &ky) in shells.iter().enumerate() {
                 let e = env[y];
                 if x == y || p[0] < e[0] || p[0] > e[2] || p[1] < e[1] || p[1] > e[3] {

@@ -13,7 +13,10 @@ fn unhex(s: &str) -> Vec<u8> {
 
 #[test]
 fn golden_v1_values_decode_unchanged() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../tests/data/golden_v1.tsv.gz");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../tests/data/golden_v1.tsv.gz"
+    );
     let mut text = String::new();
     flate2::read::GzDecoder::new(std::fs::File::open(path).expect("fixture"))
         .read_to_string(&mut text)
@@ -29,7 +32,10 @@ fn golden_v1_values_decode_unchanged() {
         let back = circletree_core::text::from_text(&text).expect("text form");
         assert_eq!(back.to_bytes(), bytes, "{name}: text round trip");
         let decoded = circletree_core::decode::to_wkb(&ct, None).expect("decode");
-        assert!(decoded == wkb, "{name}: decoded geometry differs from the fixture");
+        assert!(
+            decoded == wkb,
+            "{name}: decoded geometry differs from the fixture"
+        );
         n += 1;
     }
     assert_eq!(n, 8);

@@ -1,13 +1,15 @@
-//! The stored bytes of a `circletree` value, format version 1. `docs/FORMAT.md` describes it byte
-//! by byte.
+//! The stored bytes of a `circletree` value. `docs/FORMAT.md` describes them byte by byte. Every
+//! version shares the header; the circles follow in the version's own form: [`v1`] (zigzag
+//! varints, frozen) or [`v2`] (range-coded, written by this release).
 //!
 //! ```text
-//! u8  version (= 1)          u8  kind (3 Polygon, 6 MultiPolygon)
+//! u8  version (1 or 2)       u8  kind (3 Polygon, 6 MultiPolygon)
 //! varint srid (zigzag)       decimal grid            (decimal = zigzag varint mantissa, i8 exponent)
 //! decimal min_radius         decimal overlap         option<decimal> dp_tolerance   decimal max_error
 //! varint vertices            varint wkb_bytes        varint repaired
 //! varint nparts              [if nparts > 0: zigzag xmin, zigzag ymin, varint width, varint height]
-//! per part: varint nrings; per ring: varint ncircles; per circle: zigzag dx, zigzag dy, zigzag r
+//! v1: per part: varint nrings; per ring: varint ncircles; per circle: zigzag dx, zigzag dy, zigzag r
+//! v2: one range-coded stream of the same counts and circles (points without a radius)
 //! ```
 //! Coordinates are integers on the grid. `dx, dy` are deltas from the previous circle's centre,
 //! running through every ring of every part, starting at `(xmin, ymin)`.
@@ -21,8 +23,24 @@ use crate::geometry::Kind;
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 
+pub mod v1;
+pub mod v2;
+
 /// The version byte written by this release.
-pub const FORMAT_VERSION: u8 = 1;
+pub const FORMAT_VERSION: u8 = 2;
+/// Every version this release reads.
+pub const VERSIONS: [u8; 2] = [1, 2];
+
+/// Where the circles of a value start, and what the header tells about their scale.
+#[derive(Clone, Copy, Debug)]
+pub struct Cursor {
+    /// The first circle's deltas are from here (the bounding box's lower corner).
+    pub start: (i64, i64),
+    /// Width plus height of the bounding box, grid steps.
+    pub extent: u64,
+    /// `min_radius` in grid steps.
+    pub min_radius: u64,
+}
 /// Largest absolute coordinate or radius, in grid steps (keeps `q × grid` exact in f64).
 pub const MAX_STEPS: i64 = 1 << 52;
 
@@ -54,6 +72,8 @@ pub struct Params {
 /// A decoded `circletree` value.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct CircleTree {
+    /// The format version the value was read as, and is written as.
+    pub version: u8,
     /// Spatial reference id (0 = unknown).
     pub srid: i32,
     /// Polygon or MultiPolygon.
@@ -166,7 +186,7 @@ impl CircleTree {
     /// use circletree_core::decimal::Decimal;
     /// use circletree_core::geometry::Kind;
     /// let d = |s| Decimal::parse(s).unwrap();
-    /// let ct = CircleTree { srid: 32760, kind: Kind::Polygon, grid: d("0.5"),
+    /// let ct = CircleTree { version: FORMAT_VERSION, srid: 32760, kind: Kind::Polygon, grid: d("0.5"),
     ///   params: Params { min_radius: d("5"), overlap: d("0.4"), dp_tolerance: None, max_error: d("5") },
     ///   vertices: 5, wkb_bytes: 93, repaired: 0, bbox: Some([0, 0, 20, 20]),
     ///   parts: vec![vec![vec![Circle { x: 10, y: 10, r: 10 }]]] };
@@ -175,7 +195,7 @@ impl CircleTree {
     /// ```
     pub fn to_bytes(&self) -> Vec<u8> {
         let mut w = Writer(Vec::with_capacity(32 + 4 * self.ncircles()));
-        w.0.push(FORMAT_VERSION);
+        w.0.push(self.version);
         w.0.push(self.kind.wkb_code());
         w.put(&self.srid);
         for d in [self.grid, self.params.min_radius, self.params.overlap] {
@@ -187,36 +207,50 @@ impl CircleTree {
         w.put(&self.wkb_bytes);
         w.put(&self.repaired);
         w.put(&(self.parts.len() as u64));
-        let mut cur = (0i64, 0i64);
         if let Some(b) = self.bbox {
             w.put(&b[0]);
             w.put(&b[1]);
             w.put(&((b[2] - b[0]) as u64));
             w.put(&((b[3] - b[1]) as u64));
-            cur = (b[0], b[1]);
         }
-        for part in &self.parts {
-            w.put(&(part.len() as u64));
-            for ring in part {
-                w.put(&(ring.len() as u64));
-                for c in ring {
-                    w.put(&(c.x - cur.0));
-                    w.put(&(c.y - cur.1));
-                    w.put(&c.r);
-                    cur = (c.x, c.y);
-                }
-            }
+        let cur = self.cursor();
+        if self.version == 1 {
+            v1::write(&mut w, &self.parts, cur);
+        } else {
+            w.0.extend(v2::write(&self.parts, cur));
         }
         w.0
+    }
+
+    /// Where the circles start and the scales the header implies.
+    fn cursor(&self) -> Cursor {
+        let (start, extent) = match self.bbox {
+            Some(b) => (
+                (b[0], b[1]),
+                (b[2].saturating_sub(b[0]) as u64).saturating_add(b[3].saturating_sub(b[1]) as u64),
+            ),
+            None => ((0, 0), 0),
+        };
+        let ratio = self.params.min_radius.to_f64() / self.grid.to_f64();
+        let min_radius = if ratio.is_finite() && ratio > 0.0 {
+            ratio.min(1e18) as u64
+        } else {
+            0
+        };
+        Cursor {
+            start,
+            extent,
+            min_radius,
+        }
     }
 
     /// Decode and validate stored bytes. Never panics, never trusts a count.
     pub fn from_bytes(bytes: &[u8]) -> Result<CircleTree> {
         let mut r = Reader { buf: bytes };
         let version = r.byte("the format version")?;
-        if version != FORMAT_VERSION {
+        if !VERSIONS.contains(&version) {
             return Err(Error::Corrupt(format!(
-                "format version {version} is not known to this release (it reads version {FORMAT_VERSION})"
+                "format version {version} is not known to this release (it reads versions 1 and 2)"
             )));
         }
         let code = r.byte("the geometry kind")?;
@@ -239,7 +273,6 @@ impl CircleTree {
         let repaired: u64 = r.take("the repaired count")?;
         let nparts = r.count("parts", 5)?;
         let mut bbox = None;
-        let mut cur = (0i64, 0i64);
         if nparts > 0 {
             let xmin: i64 = r.take("the bounding box")?;
             let ymin: i64 = r.take("the bounding box")?;
@@ -250,36 +283,9 @@ impl CircleTree {
                 return Err(Error::Corrupt("the bounding box overflows".into()));
             };
             bbox = Some([xmin, ymin, xmax, ymax]);
-            cur = (xmin, ymin);
         }
-        let mut parts = Vec::with_capacity(nparts);
-        for _ in 0..nparts {
-            let nrings = r.count("rings", 4)?;
-            let mut rings = Vec::with_capacity(nrings);
-            for _ in 0..nrings {
-                let n = r.count("circles", 3)?;
-                let mut ring = Vec::with_capacity(n);
-                for _ in 0..n {
-                    let dx: i64 = r.take("a circle")?;
-                    let dy: i64 = r.take("a circle")?;
-                    let rad: i64 = r.take("a circle")?;
-                    let (Some(x), Some(y)) = (cur.0.checked_add(dx), cur.1.checked_add(dy)) else {
-                        return Err(Error::Corrupt("a circle's coordinates overflow".into()));
-                    };
-                    cur = (x, y);
-                    ring.push(Circle { x, y, r: rad });
-                }
-                rings.push(ring);
-            }
-            parts.push(rings);
-        }
-        if !r.buf.is_empty() {
-            return Err(Error::Corrupt(format!(
-                "{} bytes left over after the last circle",
-                r.buf.len()
-            )));
-        }
-        let ct = CircleTree {
+        let mut ct = CircleTree {
+            version,
             srid,
             kind,
             grid,
@@ -293,14 +299,29 @@ impl CircleTree {
             wkb_bytes,
             repaired,
             bbox,
-            parts,
+            parts: vec![],
+        };
+        let cur = ct.cursor();
+        ct.parts = if version == 1 {
+            v1::read(&mut r, nparts, cur)?
+        } else {
+            let parts = v2::read(r.buf, nparts, cur)?;
+            // One value, one byte string: a stream that is not exactly what this value encodes
+            // to (extended, truncated past its zeros, altered) is refused.
+            if v2::write(&parts, cur) != r.buf {
+                return Err(Error::Corrupt(
+                    "the coded circles are not in their canonical form (bytes changed or appended)"
+                        .into(),
+                ));
+            }
+            parts
         };
         ct.validate()?;
         Ok(ct)
     }
 }
-
-struct Writer(Vec<u8>);
+/// Plain header fields (postcard varints).
+pub struct Writer(Vec<u8>);
 
 impl Writer {
     fn put<T: Serialize + ?Sized>(&mut self, v: &T) {
@@ -314,7 +335,8 @@ impl Writer {
     }
 }
 
-struct Reader<'a> {
+/// Reads header fields.
+pub struct Reader<'a> {
     buf: &'a [u8],
 }
 
@@ -356,9 +378,10 @@ mod tests {
     use super::*;
     use proptest::prelude::*;
 
-    fn sample() -> CircleTree {
+    fn sample_v(version: u8) -> CircleTree {
         let d = |s| Decimal::parse(s).unwrap();
         CircleTree {
+            version,
             srid: 32760,
             kind: Kind::MultiPolygon,
             grid: d("0.5"),
@@ -401,26 +424,34 @@ mod tests {
 
     #[test]
     fn round_trip_and_size() {
-        let ct = sample();
-        let b = ct.to_bytes();
-        assert_eq!(CircleTree::from_bytes(&b).unwrap(), ct);
-        // header: 2 + srid 3 + grid 2 + min_radius 2 + overlap 2 + dp 3 + max_error 2 + 2 + 3 + 1
-        //   + nparts 1 + bbox 3 + 4 + 2 + 2 = 34; circles: deltas of a few bytes each
-        assert!(b.len() < 60, "{} bytes", b.len());
+        for v in VERSIONS {
+            let ct = sample_v(v);
+            let b = ct.to_bytes();
+            assert_eq!(b[0], v);
+            assert_eq!(CircleTree::from_bytes(&b).unwrap(), ct);
+            // header: 2 + srid 3 + grid 2 + min_radius 2 + overlap 2 + dp 3 + max_error 2 + 2 + 3 + 1
+            //   + nparts 1 + bbox 3 + 4 + 2 + 2 = 34; circles: deltas of a few bytes each
+            assert!(b.len() < 60, "{} bytes", b.len());
+        }
     }
 
     #[test]
     fn rejects_lies_and_leftovers() {
-        let ct = sample();
+        let ct = sample_v(1);
         let mut b = ct.to_bytes();
         b.push(0);
         assert!(
             matches!(CircleTree::from_bytes(&b), Err(Error::Corrupt(m)) if m.contains("left over"))
         );
-        let mut v = ct.to_bytes();
-        v[0] = 2;
+        let mut b = sample_v(2).to_bytes();
+        b.push(7);
         assert!(
-            matches!(CircleTree::from_bytes(&v), Err(Error::Corrupt(m)) if m.contains("version 2"))
+            matches!(CircleTree::from_bytes(&b), Err(Error::Corrupt(m)) if m.contains("canonical"))
+        );
+        let mut v = ct.to_bytes();
+        v[0] = 3;
+        assert!(
+            matches!(CircleTree::from_bytes(&v), Err(Error::Corrupt(m)) if m.contains("version 3"))
         );
         assert!(matches!(
             CircleTree::from_bytes(&[]),
@@ -459,8 +490,8 @@ mod tests {
         }
 
         #[test]
-        fn mutated_values_never_panic(pos in 0usize..60, val in any::<u8>()) {
-            let mut b = sample().to_bytes();
+        fn mutated_values_never_panic(pos in 0usize..60, val in any::<u8>(), version in 1u8..=2) {
+            let mut b = sample_v(version).to_bytes();
             let i = pos % b.len();
             b[i] = val;
             if let Ok(ct) = CircleTree::from_bytes(&b) {

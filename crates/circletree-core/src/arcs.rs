@@ -1,0 +1,413 @@
+//! Validity of the true arcs. [`crate::validity`] checks the rings stroked at the grid step; this
+//! module checks what lies between those chords and the arcs they stand for, so that the value is
+//! valid however finely it is stroked (`ct_decode(ct, tol)` for any `tol` up to the grid step) and
+//! as true arcs (`ct_decode_curved`):
+//!
+//! - no arc may meet a line or another arc of the rings except where they join (arc-segment and
+//!   arc-arc intersection, solved from the circle equations);
+//! - no ring may lie inside the sliver between a chord of the grid stroke and its arc.
+//!
+//! Why that is enough: every finer stroke of an arc lies in the slivers between the coarse chords
+//! and the arc. A piece of another ring that reaches into a sliver without crossing its chord
+//! (checked on the coarse stroke) or its arc (checked here) lies wholly inside it, and then so does
+//! its whole ring (the last test). Ends of pieces closer than `eps` count as meeting, so floating
+//! point rounding can only make the check stricter, never let a touch through.
+
+use crate::geometry::{dist2_to_segment, Pt};
+use crate::reconstruct::{arc_segments, Seg, Spans};
+use rstar::primitives::{GeomWithData, Rectangle};
+use rstar::{RTree, RTreeObject, AABB};
+use std::f64::consts::TAU;
+
+/// A ring's rebuilt pieces: its part, its index in the part, its spans, and whether each span
+/// changed since the last check that found nothing (`None`: all did).
+pub struct ArcRing<'a> {
+    /// The spans ([`crate::reconstruct::ring_spans`]).
+    pub spans: &'a Spans,
+    /// `dirty[s]`: span `s` may differ from the last check.
+    pub dirty: Option<&'a [bool]>,
+}
+
+#[derive(Clone, Copy)]
+struct Piece {
+    ring: usize,
+    span: usize,
+    /// Position in the ring's sequence of pieces (degenerate lines dropped).
+    pos: usize,
+    seg: Seg,
+}
+
+fn arc_box(c: Pt, r: f64, a0: f64, sweep: f64, from: Pt, to: Pt) -> [f64; 4] {
+    let mut b = [
+        from[0].min(to[0]),
+        from[1].min(to[1]),
+        from[0].max(to[0]),
+        from[1].max(to[1]),
+    ];
+    for (k, p) in [
+        [c[0] + r, c[1]],
+        [c[0], c[1] + r],
+        [c[0] - r, c[1]],
+        [c[0], c[1] - r],
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        if on_arc_angle(k as f64 * TAU / 4.0, a0, sweep, 1e-12) {
+            b = [
+                b[0].min(p[0]),
+                b[1].min(p[1]),
+                b[2].max(p[0]),
+                b[3].max(p[1]),
+            ];
+        }
+    }
+    b
+}
+
+fn piece_box(seg: &Seg, pad: f64) -> Rectangle<Pt> {
+    let b = match *seg {
+        Seg::Line(a, b) => [
+            a[0].min(b[0]),
+            a[1].min(b[1]),
+            a[0].max(b[0]),
+            a[1].max(b[1]),
+        ],
+        Seg::Arc {
+            c,
+            r,
+            a0,
+            sweep,
+            from,
+            to,
+        } => arc_box(c, r, a0, sweep, from, to),
+    };
+    Rectangle::from_corners([b[0] - pad, b[1] - pad], [b[2] + pad, b[3] + pad])
+}
+
+/// Is angle `t` on the arc starting at `a0` sweeping `sweep` (signed), to `tol` radians?
+fn on_arc_angle(t: f64, a0: f64, sweep: f64, tol: f64) -> bool {
+    let rel = if sweep >= 0.0 { t - a0 } else { a0 - t }.rem_euclid(TAU);
+    rel <= sweep.abs() + tol || rel >= TAU - tol
+}
+
+fn on_arc(p: Pt, c: Pt, r: f64, a0: f64, sweep: f64, eps: f64) -> bool {
+    on_arc_angle((p[1] - c[1]).atan2(p[0] - c[0]), a0, sweep, eps / r)
+}
+
+/// Points where the line `a-b` meets the circle (to `eps`).
+fn line_circle(a: Pt, b: Pt, c: Pt, r: f64, eps: f64) -> Vec<Pt> {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let len2 = d[0] * d[0] + d[1] * d[1];
+    let mut out = Vec::new();
+    if len2 == 0.0 {
+        return out;
+    }
+    // closest point of the segment to the centre: a touch when it is within eps of the circle
+    let t0 = (((c[0] - a[0]) * d[0] + (c[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0);
+    let q = [a[0] + t0 * d[0], a[1] + t0 * d[1]];
+    let dq = (q[0] - c[0]).hypot(q[1] - c[1]);
+    if (dq - r).abs() <= eps {
+        out.push(q);
+    }
+    if dq > r + eps {
+        return out;
+    }
+    // the two crossings of the infinite line, kept when on the segment
+    let f = [a[0] - c[0], a[1] - c[1]];
+    let bq = 2.0 * (f[0] * d[0] + f[1] * d[1]);
+    let cq = f[0] * f[0] + f[1] * f[1] - r * r;
+    let disc = (bq * bq - 4.0 * len2 * cq).max(0.0).sqrt();
+    let tol_t = eps / len2.sqrt();
+    for t in [(-bq - disc) / (2.0 * len2), (-bq + disc) / (2.0 * len2)] {
+        if (-tol_t..=1.0 + tol_t).contains(&t) {
+            out.push([a[0] + t * d[0], a[1] + t * d[1]]);
+        }
+    }
+    out
+}
+
+/// Points where two circles meet (to `eps`); `None` when they are the same circle.
+fn circle_circle(c1: Pt, r1: f64, c2: Pt, r2: f64, eps: f64) -> Option<Vec<Pt>> {
+    let d = (c2[0] - c1[0]).hypot(c2[1] - c1[1]);
+    if d <= eps && (r1 - r2).abs() <= eps {
+        return None;
+    }
+    if d > r1 + r2 + eps || d < (r1 - r2).abs() - eps || d == 0.0 {
+        return Some(vec![]);
+    }
+    let u = [(c2[0] - c1[0]) / d, (c2[1] - c1[1]) / d];
+    let a = (d * d + r1 * r1 - r2 * r2) / (2.0 * d);
+    let h = (r1 * r1 - a * a).max(0.0).sqrt();
+    let m = [c1[0] + a * u[0], c1[1] + a * u[1]];
+    Some(vec![
+        [m[0] - h * u[1], m[1] + h * u[0]],
+        [m[0] + h * u[1], m[1] - h * u[0]],
+    ])
+}
+
+fn near(p: Pt, q: Pt, eps: f64) -> bool {
+    (p[0] - q[0]).hypot(p[1] - q[1]) <= eps
+}
+
+/// Do two pieces meet anywhere but at the joints `joints` (points where they are allowed to meet)?
+fn meet(x: &Seg, y: &Seg, joints: &[Pt], eps: f64) -> bool {
+    let away = |p: &Pt| joints.iter().all(|j| !near(*p, *j, 16.0 * eps));
+    match (*x, *y) {
+        (Seg::Line(..), Seg::Line(..)) => false, // the stroke check covers straight pieces
+        (
+            Seg::Line(a, b),
+            Seg::Arc {
+                c, r, a0, sweep, ..
+            },
+        )
+        | (
+            Seg::Arc {
+                c, r, a0, sweep, ..
+            },
+            Seg::Line(a, b),
+        ) => line_circle(a, b, c, r, eps)
+            .iter()
+            .any(|p| away(p) && on_arc(*p, c, r, a0, sweep, eps)),
+        (
+            Seg::Arc {
+                c: c1,
+                r: r1,
+                a0: s1,
+                sweep: w1,
+                from: f1,
+                to: t1,
+            },
+            Seg::Arc {
+                c: c2,
+                r: r2,
+                a0: s2,
+                sweep: w2,
+                from: f2,
+                to: t2,
+            },
+        ) => match circle_circle(c1, r1, c2, r2, eps) {
+            Some(pts) => pts.iter().any(|p| {
+                away(p) && on_arc(*p, c1, r1, s1, w1, eps) && on_arc(*p, c2, r2, s2, w2, eps)
+            }),
+            // the same circle: they meet if an end of one lies on the other, off the joints
+            None => {
+                [f1, t1]
+                    .iter()
+                    .any(|p| away(p) && on_arc(*p, c2, r2, s2, w2, -eps))
+                    || [f2, t2]
+                        .iter()
+                        .any(|p| away(p) && on_arc(*p, c1, r1, s1, w1, -eps))
+            }
+        },
+    }
+}
+
+/// Problems: `(ring, span)` for every span whose true arcs meet another piece, or whose slivers
+/// hold another ring. `tol` is the stroke tolerance of the checked stroke (the grid step), `eps`
+/// the distance under which two pieces count as meeting. `probes[k]` is a point of ring `k`.
+pub fn problems(
+    rings: &[ArcRing],
+    probes: &[Pt],
+    tol: f64,
+    eps: f64,
+    interrupt: &mut dyn FnMut(),
+) -> Vec<(usize, usize)> {
+    let mut pieces: Vec<Vec<Piece>> = Vec::with_capacity(rings.len());
+    for (k, r) in rings.iter().enumerate() {
+        let mut v = Vec::new();
+        for (s, span) in r.spans.iter().enumerate() {
+            for seg in span {
+                // Lines shorter than eps are joints, not pieces: their neighbours meet there.
+                if let Seg::Line(a, b) = seg {
+                    if near(*a, *b, eps) {
+                        continue;
+                    }
+                }
+                v.push(Piece {
+                    ring: k,
+                    span: s,
+                    pos: v.len(),
+                    seg: *seg,
+                });
+            }
+        }
+        pieces.push(v);
+    }
+    let has_arc = pieces
+        .iter()
+        .flatten()
+        .any(|p| matches!(p.seg, Seg::Arc { .. }));
+    if !has_arc {
+        return vec![];
+    }
+    interrupt();
+    let tree = RTree::bulk_load(
+        pieces
+            .iter()
+            .flatten()
+            .map(|p| GeomWithData::new(piece_box(&p.seg, eps), (p.ring, p.pos)))
+            .collect(),
+    );
+    let dirty = |p: &Piece| {
+        rings[p.ring]
+            .dirty
+            .is_none_or(|d| d.get(p.span).copied().unwrap_or(true))
+    };
+    let mut bad = Vec::new();
+    for (count, p) in pieces.iter().flatten().enumerate() {
+        if count % 4096 == 0 {
+            interrupt();
+        }
+        if !dirty(p) {
+            continue;
+        }
+        for other in tree.locate_in_envelope_intersecting(&piece_box(&p.seg, eps).envelope()) {
+            let (k2, pos2) = other.data;
+            let q = &pieces[k2][pos2];
+            if (k2, pos2) == (p.ring, p.pos) || (dirty(q) && (k2, pos2) < (p.ring, p.pos)) {
+                continue;
+            }
+            let mut joints = Vec::new();
+            if k2 == p.ring {
+                let n = pieces[k2].len();
+                if (p.pos + 1) % n == pos2 {
+                    joints.push(p.seg.end());
+                }
+                if (pos2 + 1) % n == p.pos {
+                    joints.push(p.seg.start());
+                }
+            }
+            if meet(&p.seg, &q.seg, &joints, eps) {
+                bad.push((p.ring, p.span));
+                bad.push((k2, q.span));
+            }
+        }
+    }
+    // A ring inside the sliver between an arc of another ring and that arc's chords.
+    for (k, probe) in probes.iter().enumerate() {
+        let b = AABB::from_point(*probe);
+        for other in tree.locate_in_envelope_intersecting(&b) {
+            let (k2, pos2) = other.data;
+            if k2 == k {
+                continue;
+            }
+            if let Seg::Arc {
+                c, r, a0, sweep, ..
+            } = pieces[k2][pos2].seg
+            {
+                if in_sliver(*probe, c, r, a0, sweep, tol, eps) {
+                    bad.push((k, usize::MAX));
+                    bad.push((k2, pieces[k2][pos2].span));
+                }
+            }
+        }
+    }
+    bad
+}
+
+/// Is `p` between the arc and its chords when stroked at `tol` (to `eps`)?
+fn in_sliver(p: Pt, c: Pt, r: f64, a0: f64, sweep: f64, tol: f64, eps: f64) -> bool {
+    let d = (p[0] - c[0]).hypot(p[1] - c[1]);
+    if d > r + eps || !on_arc(p, c, r, a0, sweep, eps) {
+        return false;
+    }
+    let k = arc_segments(r, sweep, tol);
+    let at = |j: usize| {
+        let t = a0 + sweep * (j as f64) / (k as f64);
+        [c[0] + r * t.cos(), c[1] + r * t.sin()]
+    };
+    // the chord whose angular range holds p: p is in its sliver when farther from the centre
+    // than the chord's line
+    let rel = if sweep >= 0.0 {
+        (p[1] - c[1]).atan2(p[0] - c[0]) - a0
+    } else {
+        a0 - (p[1] - c[1]).atan2(p[0] - c[0])
+    }
+    .rem_euclid(TAU);
+    let j = ((rel / sweep.abs() * k as f64).floor() as usize).min(k - 1);
+    (j.saturating_sub(1)..=(j + 1).min(k - 1)).any(|j| {
+        let (a, b) = (at(j), at(j + 1));
+        let apothem = dist2_to_segment(c, a, b).sqrt();
+        d + eps >= apothem
+            && on_arc_angle(
+                (p[1] - c[1]).atan2(p[0] - c[0]),
+                a0 + sweep * (j as f64) / (k as f64),
+                sweep / k as f64,
+                eps / r,
+            )
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reconstruct::ring_spans;
+
+    fn check(rings: &[Vec<[f64; 3]>]) -> Vec<(usize, usize)> {
+        let spans: Vec<Spans> = rings.iter().map(|c| ring_spans(c)).collect();
+        let refs: Vec<ArcRing> = spans
+            .iter()
+            .map(|s| ArcRing {
+                spans: s,
+                dirty: None,
+            })
+            .collect();
+        let probes: Vec<Pt> = spans.iter().map(|s| s[0][0].start()).collect();
+        problems(&refs, &probes, 1.0, 1e-9, &mut || {})
+    }
+
+    #[test]
+    fn a_disc_and_a_point_ring_apart_are_fine() {
+        let disc = vec![[0.0, 0.0, 10.0]];
+        let tri = vec![[20.0, 0.0, 0.0], [30.0, 0.0, 0.0], [25.0, 5.0, 0.0]];
+        assert!(check(&[disc, tri]).is_empty());
+    }
+
+    #[test]
+    fn a_segment_cutting_an_arc_between_chords_is_caught() {
+        // A disc of radius 100 stroked at 1 has chords ~28 long; a triangle whose tip pokes 0.3
+        // into the disc between two stroke points meets the arc, not the chords.
+        let disc = vec![[0.0, 0.0, 100.0]];
+        let tri = vec![[99.7, 0.05, 0.0], [110.0, -5.0, 0.0], [110.0, 5.0, 0.0]];
+        assert!(!check(&[disc.clone(), tri]).is_empty());
+        let clear = vec![[100.3, 0.05, 0.0], [110.0, -5.0, 0.0], [110.0, 5.0, 0.0]];
+        assert!(check(&[disc, clear]).is_empty());
+    }
+
+    #[test]
+    fn a_ring_inside_a_sliver_is_caught() {
+        let disc = vec![[0.0, 0.0, 100.0]];
+        // a tiny triangle just inside the arc near angle 0.01 rad, outside every chord
+        let p = [100.0 * 0.01f64.cos(), 100.0 * 0.01f64.sin()];
+        let tiny = vec![
+            [p[0] - 0.01, p[1], 0.0],
+            [p[0] - 0.01, p[1] + 0.001, 0.0],
+            [p[0] - 0.012, p[1], 0.0],
+        ];
+        assert!(!check(&[disc, tiny]).is_empty());
+    }
+
+    #[test]
+    fn two_crossing_circles_are_caught() {
+        let a = vec![[0.0, 0.0, 10.0]];
+        let b = vec![[15.0, 0.0, 10.0]];
+        assert!(!check(&[a, b]).is_empty());
+        let far = vec![[25.0, 0.0, 4.0]];
+        assert!(check(&[vec![[0.0, 0.0, 10.0]], far]).is_empty());
+    }
+
+    #[test]
+    fn a_stadium_is_not_in_conflict_with_itself() {
+        let st = vec![[0.0, 0.0, 5.0], [30.0, 0.0, 5.0]];
+        assert!(check(&[st]).is_empty());
+        let bay = vec![
+            [0.0, 0.0, 0.0],
+            [20.0, 0.0, 0.0],
+            [20.0, 20.0, 0.0],
+            [10.0, 10.0, 2.0],
+            [0.0, 20.0, 0.0],
+        ];
+        assert!(check(&[bay]).is_empty());
+    }
+}

@@ -1,0 +1,203 @@
+//! Format version 2: the same header as version 1, then one range-coded stream
+//! ([`crate::coder`]) holding every count and every circle.
+//!
+//! ```text
+//! stream: per part: nrings − 1; per ring: ncircles            (the counts model)
+//!         per circle: flag "has a radius"                      (context: the previous circle's)
+//!                     dx, dy from the previous circle's centre (models by this and the previous
+//!                                                              circle's kind: point or circle)
+//!                     r, when it has one                       (the radius model)
+//! ```
+//! A zero-radius circle (a boundary point) stores no radius: runs of points cost two coded deltas
+//! each. The first prediction of each model comes from the header, not from any data set: the
+//! deltas from the bounding box and the number of circles, the radii from `min_radius`.
+
+use super::{Circle, Cursor};
+use crate::coder::{Bit, IntModel, Reader, Writer};
+use crate::error::{Error, Result};
+
+/// Adaptive models of the stream, in their starting state for a value.
+pub struct Models {
+    counts: IntModel,
+    kind: [Bit; 2],
+    /// `[this kind][previous kind]`, kind 0 a point, 1 a circle: x then y.
+    delta: [[[IntModel; 2]; 2]; 2],
+    radius: IntModel,
+    prev_circle: bool,
+}
+
+fn class(v: u64) -> u32 {
+    64 - v.leading_zeros()
+}
+
+impl Models {
+    /// Starting models for a value with this bounding box (grid steps), number of circles and
+    /// minimum radius (grid steps).
+    pub fn new(extent: u64, ncircles: u64, min_radius: u64) -> Models {
+        let step = class(extent.saturating_mul(3) / ncircles.max(1));
+        let d = IntModel::expecting(step);
+        let r = IntModel::expecting(class(min_radius.saturating_mul(2)));
+        Models {
+            counts: IntModel::expecting(4),
+            kind: [Bit::default(); 2],
+            delta: [
+                [[d.clone(), d.clone()], [d.clone(), d.clone()]],
+                [[d.clone(), d.clone()], [d.clone(), d]],
+            ],
+            radius: r,
+            prev_circle: false,
+        }
+    }
+
+    /// Code one circle after the one at `cur`.
+    pub fn put(&mut self, w: &mut Writer, c: &Circle, cur: (i64, i64)) {
+        let is_circle = c.r != 0;
+        let (k, p) = (is_circle as usize, self.prev_circle as usize);
+        w.flag(&mut self.kind[p], is_circle);
+        if is_circle {
+            w.int(&mut self.radius, c.r);
+            self.expect_radius(c.r, k, p);
+        }
+        w.int(&mut self.delta[0][k][p], c.x - cur.0);
+        w.int(&mut self.delta[1][k][p], c.y - cur.1);
+        self.prev_circle = is_circle;
+    }
+
+    /// A circle's centre lies about its radius from the boundary: predict its deltas' class so.
+    fn expect_radius(&mut self, r: i64, k: usize, p: usize) {
+        let c = class(r.unsigned_abs()).saturating_sub(1);
+        self.delta[0][k][p].predict(c);
+        self.delta[1][k][p].predict(c);
+    }
+
+    /// Bits one circle would cost next (the encoders' cost function; nothing is updated).
+    pub fn cost(&self, c: &Circle, cur: (i64, i64)) -> f64 {
+        let is_circle = c.r != 0;
+        let (k, p) = (is_circle as usize, self.prev_circle as usize);
+        let (mut dx, mut dy) = (self.delta[0][k][p].clone(), self.delta[1][k][p].clone());
+        if is_circle {
+            let cl = class(c.r.unsigned_abs()).saturating_sub(1);
+            dx.predict(cl);
+            dy.predict(cl);
+        }
+        self.kind[p].cost(is_circle)
+            + dx.cost(c.x - cur.0)
+            + dy.cost(c.y - cur.1)
+            + if is_circle {
+                self.radius.cost(c.r)
+            } else {
+                0.0
+            }
+    }
+
+    fn get(&mut self, r: &mut Reader, cur: (i64, i64)) -> Result<Circle> {
+        let p = self.prev_circle as usize;
+        let is_circle = r.flag(&mut self.kind[p])?;
+        let k = is_circle as usize;
+        let rad = if is_circle {
+            let v = r.int(&mut self.radius)?;
+            if v == 0 {
+                return Err(Error::Corrupt(
+                    "a circle flagged with a radius has none".into(),
+                ));
+            }
+            self.expect_radius(v, k, p);
+            v
+        } else {
+            0
+        };
+        let dx = r.int(&mut self.delta[0][k][p])?;
+        let dy = r.int(&mut self.delta[1][k][p])?;
+        self.prev_circle = is_circle;
+        let (Some(x), Some(y)) = (cur.0.checked_add(dx), cur.1.checked_add(dy)) else {
+            return Err(Error::Corrupt("a circle's coordinates overflow".into()));
+        };
+        Ok(Circle { x, y, r: rad })
+    }
+}
+
+/// The coded stream of a value's parts.
+pub fn write(parts: &[Vec<Vec<Circle>>], cur: Cursor) -> Vec<u8> {
+    let n: usize = parts.iter().flatten().map(Vec::len).sum();
+    let mut m = Models::new(cur.extent, n as u64, cur.min_radius);
+    let mut w = Writer::default();
+    for part in parts {
+        w.int(&mut m.counts, part.len() as i64 - 1);
+    }
+    for ring in parts.iter().flatten() {
+        w.int(&mut m.counts, ring.len() as i64);
+    }
+    let mut at = cur.start;
+    for c in parts.iter().flatten().flatten() {
+        m.put(&mut w, c, at);
+        at = (c.x, c.y);
+    }
+    w.finish()
+}
+
+/// Circles per byte of stream that a value may claim: far more than any real value reaches (a
+/// coded circle takes at least three decisions of at most 4064/4096 each), far fewer than a
+/// hostile count could ask for.
+const MAX_CIRCLES_PER_BYTE: usize = 512;
+
+/// Read the coded stream of `nparts` parts.
+pub fn read(bytes: &[u8], nparts: usize, cur: Cursor) -> Result<Vec<Vec<Vec<Circle>>>> {
+    let budget = MAX_CIRCLES_PER_BYTE * (bytes.len() + 8);
+    let mut r = Reader::new(bytes)?;
+    let mut counts = IntModel::expecting(4);
+    let count = |r: &mut Reader, m: &mut IntModel, what: &str, plus: i64| -> Result<usize> {
+        let v = r.int(m)?.checked_add(plus).unwrap_or(-1);
+        usize::try_from(v)
+            .ok()
+            .filter(|&n| n <= budget)
+            .ok_or_else(|| Error::Corrupt(format!("the value claims {v} {what}")))
+    };
+    if nparts > budget {
+        return Err(Error::Corrupt(format!("the value claims {nparts} parts")));
+    }
+    let mut nrings = Vec::with_capacity(nparts);
+    let mut total_rings = 0usize;
+    for _ in 0..nparts {
+        let n = count(&mut r, &mut counts, "rings", 1)?;
+        total_rings += n;
+        if total_rings > budget {
+            return Err(Error::Corrupt(format!(
+                "the value claims {total_rings} rings"
+            )));
+        }
+        nrings.push(n);
+    }
+    let mut sizes = Vec::with_capacity(total_rings);
+    let mut total = 0usize;
+    for _ in 0..total_rings {
+        let n = count(&mut r, &mut counts, "circles", 0)?;
+        total += n;
+        if total > budget {
+            return Err(Error::Corrupt(format!(
+                "the value claims {total} circles in {} bytes",
+                bytes.len()
+            )));
+        }
+        sizes.push(n);
+    }
+    let mut m = Models::new(cur.extent, total as u64, cur.min_radius);
+    m.counts = counts;
+    let mut at = cur.start;
+    let mut sizes = sizes.into_iter();
+    let mut parts = Vec::with_capacity(nparts);
+    for nr in nrings {
+        let mut rings = Vec::with_capacity(nr);
+        for _ in 0..nr {
+            let n = sizes.next().unwrap_or(0);
+            let mut ring = Vec::with_capacity(n);
+            for _ in 0..n {
+                let c = m.get(&mut r, at)?;
+                at = (c.x, c.y);
+                ring.push(c);
+            }
+            rings.push(ring);
+        }
+        parts.push(rings);
+    }
+    Ok(parts)
+}
