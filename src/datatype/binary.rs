@@ -27,7 +27,7 @@ fn circletree_recv(mut internal: Internal) -> CircleTree {
         // SAFETY: data holds len bytes; we read [cursor, len).
         unsafe { std::slice::from_raw_parts((buf.data as *const u8).add(cursor), len - cursor) }
     };
-    let ct = CircleTree::from_stored(bytes);
+    let ct = CircleTree::from_input(bytes);
     buf.cursor = buf.len;
     ct
 }
@@ -35,7 +35,7 @@ fn circletree_recv(mut internal: Internal) -> CircleTree {
 /// `bytea -> circletree`: validates the bytes (ERROR 22P03 when they are not a circletree).
 #[pg_extern(immutable, strict, parallel_safe)]
 fn circletree_from_bytea(bytes: &[u8]) -> CircleTree {
-    CircleTree::from_stored(bytes)
+    CircleTree::from_input(bytes)
 }
 
 /// `circletree -> bytea`: the stored bytes.

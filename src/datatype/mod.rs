@@ -15,7 +15,7 @@ use pgrx::prelude::*;
 pub struct CircleTree {
     /// The decoded value.
     pub value: format::CircleTree,
-    /// Its stored bytes (format v1), as written by `to_bytes`.
+    /// Its stored bytes (format v1 or v2), as written by `to_bytes`.
     pub bytes: Vec<u8>,
 }
 
@@ -26,8 +26,18 @@ impl CircleTree {
         CircleTree { value, bytes }
     }
 
-    /// Decode and validate stored bytes, or raise 22P03.
+    /// Decode and validate stored bytes (a datum this extension wrote), or raise 22P03.
     pub fn from_stored(bytes: &[u8]) -> Self {
+        let value = format::CircleTree::from_stored_bytes(bytes).or_raise();
+        CircleTree {
+            value,
+            bytes: bytes.to_vec(),
+        }
+    }
+
+    /// Decode and validate bytes from outside (binary COPY, `bytea::circletree`), also checking
+    /// that they are exactly the bytes their value encodes to; or raise 22P03.
+    pub fn from_input(bytes: &[u8]) -> Self {
         let value = format::CircleTree::from_bytes(bytes).or_raise();
         CircleTree {
             value,

@@ -3,6 +3,7 @@
 #[path = "../tests/common/mod.rs"]
 mod common;
 use circletree_core::encode::{encode, Options};
+use circletree_core::format::CircleTree;
 use std::time::Instant;
 
 fn main() {
@@ -17,6 +18,19 @@ fn main() {
         max_error: a.get(3).copied(),
     };
     let (mut tb, mut tw, mut tt, mut t1) = (0usize, 0usize, 0.0, 0usize);
+    // decode time (bytes -> validated value -> WKB at the default arc tolerance), v1 and v2 bytes
+    let (mut d1, mut d2) = (0.0f64, 0.0f64);
+    let decode_time = |bytes: &[u8]| {
+        let t = Instant::now();
+        for _ in 0..5 {
+            let v = CircleTree::from_stored_bytes(bytes).expect("reads back");
+            if std::env::var("CT_PARSE_ONLY").is_err() {
+                std::hint::black_box(circletree_core::decode::to_wkb(&v, None).expect("decodes"));
+            }
+            std::hint::black_box(v);
+        }
+        t.elapsed().as_secs_f64() / 5.0
+    };
     let only: Vec<String> = std::env::var("CT_ONLY")
         .map(|v| v.split(',').map(String::from).collect())
         .unwrap_or_default();
@@ -31,7 +45,10 @@ fn main() {
                 let b = ct.to_bytes().len();
                 let mut old = ct.clone();
                 old.version = 1;
-                let b1 = old.to_bytes().len();
+                let old_bytes = old.to_bytes();
+                let b1 = old_bytes.len();
+                d1 += decode_time(&old_bytes);
+                d2 += decode_time(&ct.to_bytes());
                 t1 += b1;
                 tb += b;
                 tw += s.wkb.len();
@@ -47,8 +64,9 @@ fn main() {
         }
     }
     println!(
-        "TOTAL bytes={tb} v1={t1} v2/v1={:.3} wkb={tw} ratio={:.4} time={tt:.2}s",
+        "TOTAL bytes={tb} v1={t1} v2/v1={:.3} wkb={tw} ratio={:.4} time={tt:.2}s decode v1={d1:.4}s v2={d2:.4}s v2/v1={:.2}",
         tb as f64 / t1 as f64,
-        tb as f64 / tw as f64
+        tb as f64 / tw as f64,
+        d2 / d1
     );
 }

@@ -106,8 +106,10 @@ fn kapiti_at_the_papers_scale() {
         internal > 50 && external > 50 && zero > 0,
         "{internal} {external} {zero}"
     );
+    // (0.1.0, on a grid of max_error/10, kept 488; 0.2.0's grid of about max_error/2 leaves less
+    // of the budget to the circles, so the repair loop keeps more points, in fewer bytes)
     assert!(
-        all.len() < s.npoints / 3,
+        all.len() < s.npoints / 2,
         "{} circles for {} vertices",
         all.len(),
         s.npoints
