@@ -106,7 +106,7 @@ mod tests {
     }
 
     #[pg_test(
-        error = "corrupt circletree value: format version 9 is not known to this release (it reads version 1)"
+        error = "corrupt circletree value: format version 9 is not known to this release (it reads versions 1 and 2)"
     )]
     fn corrupt_bytea_is_a_clean_error() {
         let _ = Spi::get_one::<i32>("SELECT ct_ncircles('\\x0903'::bytea::circletree)");

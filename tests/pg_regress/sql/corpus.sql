@@ -13,7 +13,7 @@ SELECT min_radius, dp, count(*) AS polygons,
        count(*) FILTER (WHERE ST_NumGeometries(d) = ST_NumGeometries(geom)) AS same_parts,
        count(*) FILTER (WHERE ct_hausdorff(ct, geom) <= max_error) AS hausdorff_ok,
        count(*) FILTER (WHERE ST_NPoints(geom) <= 5000 AND ST_HausdorffDistance(d, geom) <= max_error) AS postgis_hausdorff_ok,
-       count(*) FILTER (WHERE ST_NPoints(geom) <= 5000 AND ST_HausdorffDistance(d, geom) <= ct_hausdorff(ct, geom) + 1e-6) AS discrete_not_above
+       count(*) FILTER (WHERE ST_NPoints(geom) <= 5000 AND ST_HausdorffDistance(d, geom) <= ct_hausdorff(d, geom) + 1e-6) AS discrete_not_above
   FROM dec GROUP BY 1, 2 ORDER BY 1;
 -- smaller than the WKB everywhere, and much smaller at coarser settings
 SELECT min_radius, dp, count(*) FILTER (WHERE ct_memsize(ct) < octet_length(ST_AsBinary(geom))) AS smaller,

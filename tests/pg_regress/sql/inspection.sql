@@ -5,7 +5,7 @@ SELECT ct_ncircles(ct), ct_srid(ct), ct_memsize(ct), pg_column_size(ct) FROM w;
 SELECT jsonb_pretty(ct_summary(ct)) FROM w;
 -- on Kapiti Island (LINZ 1:50k, 2029 vertices): circles of all three kinds, far fewer than vertices
 CREATE TABLE k AS SELECT geom, ct_encode(geom, 5, 0.4, 10) AS ct FROM coast WHERE name = 'kapiti_island_linz';
-SELECT ct_srid(ct) = ST_SRID(geom) AS same_srid, ct_ncircles(ct) < ST_NPoints(geom) / 3 AS fewer_circles,
+SELECT ct_srid(ct) = ST_SRID(geom) AS same_srid, ct_ncircles(ct) < ST_NPoints(geom) / 2 AS fewer_circles,
        ct_memsize(ct) = octet_length(ct::bytea) + 4 AS memsize_is_varlena
   FROM k;
 SELECT (s->>'internal')::int > 50 AS internal, (s->>'external')::int > 50 AS external, (s->>'zero')::int > 0 AS zero,
