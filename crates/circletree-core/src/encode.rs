@@ -20,7 +20,7 @@
 //!
 //! The loop ends because each round adds a vertex or removes a circle; its end point, every vertex
 //! kept, is the quantized original. If even that fails (two rings closer than the grid step), the
-//! grid is refined tenfold, twice at most. The result is valid and within `max_error`.
+//! grid is refined tenfold, up to [`REFINEMENTS`] times (parts smaller than the grid need it). The result is valid and within `max_error`.
 //!
 //! Parameters the stored format cannot hold are refused before any work (a grid outside
 //! 1e-12 ..= 9e12, coordinates beyond 2^50 grid steps), so every value returned reads back.
@@ -32,7 +32,7 @@ use crate::geometry::{dist2_to_segment, orient, Pt, Shape};
 use crate::grid::Grid;
 use crate::metrics::{segment_max, segment_max_in};
 use crate::reconstruct::{ring_spans, stroke_spans};
-use crate::validity::{problems_where, touch_key, RingRef, Touches};
+use crate::validity::{point_in_ring, problems_where, touch_key, RingRef, Touches};
 use crate::{arcs, douglas_peucker, filter, medial, touch};
 use rstar::primitives::Line;
 use rstar::RTree;
@@ -230,6 +230,31 @@ impl RingState {
             .collect()
     }
 
+    /// Is span `s` the original edge between two kept vertices (nothing left to refine)?
+    fn exact(&self, s: usize) -> bool {
+        let m = self.m();
+        self.entries[s].r == 0.0
+            && self.entries[(s + 1) % m].r == 0.0
+            && self.orig_edges(s).len() <= 1
+    }
+
+    /// The span to refine when `p` lies on the wrong side of this ring's rebuild (inside it and
+    /// outside the original, or the other way round): the one, not yet exact, whose stroke is
+    /// nearest to `p`. `None` when rebuild and original agree about `p`, or nothing is left.
+    fn wrong_side(&self, p: Pt) -> Option<usize> {
+        if self.recon.len() < 3 || point_in_ring(p, &self.recon) == point_in_ring(p, &self.pts) {
+            return None;
+        }
+        (0..self.recon.len())
+            .filter_map(|i| {
+                let s = self.span_of[i] as usize;
+                let (a, b) = self.recon_seg(i);
+                (!self.exact(s)).then(|| (dist2_to_segment(p, a, b), s))
+            })
+            .min_by(|x, y| x.0.total_cmp(&y.0))
+            .map(|(_, s)| s)
+    }
+
     /// Does every point of span `s`, and of the original edges it stands for, lie within
     /// `target` of the other boundary (measured on the windows)?
     fn span_fits(&self, s: usize, target: f64, eps: f64) -> bool {
@@ -374,7 +399,7 @@ pub fn encode_checked(
         });
     }
     let mut last_problem: Option<Pt> = None;
-    for attempt in 0..3 {
+    for attempt in 0..=REFINEMENTS {
         let g = Grid::new(grid);
         let allowed: Touches = touches
             .iter()
@@ -420,7 +445,7 @@ pub fn encode_checked(
                 let finer = Decimal::new(grid.mantissa, grid.exp as i32 - 1)
                     .filter(|g| Grid::storable(*g) && magnitude / g.to_f64() <= limit);
                 match finer {
-                    Some(f) if attempt < 2 => grid = f,
+                    Some(f) if attempt < REFINEMENTS => grid = f,
                     _ => break,
                 }
             }
@@ -431,6 +456,11 @@ pub fn encode_checked(
         "{max_error}: even keeping every vertex, the rebuilt rings touch or cross{at} on a grid of {grid} (parts or holes closer to each other than the grid step, or touching at a point that is not a vertex of either)"
     )))
 }
+
+/// How many times the grid may be refined tenfold. Islands much smaller than max_error (Scilly's
+/// rocks at 50 km) need a grid far finer than max_error/2; a refinement only costs the bytes of the
+/// finer coordinates, and a polygon that needs none never pays for it.
+const REFINEMENTS: usize = 6;
 
 /// What every round of the loop reads.
 struct Context<'a> {
@@ -616,13 +646,33 @@ fn encode_with_grid(
                         .collect()
                 })
                 .collect();
+            let mut misplaced = Vec::new();
             for (k, seg) in problems_where(&refs, Some(&changed), ctx.allowed, interrupt) {
                 if seg == usize::MAX {
                     failing[k].extend(0..rings[k].entries.len());
                     problem_at = problem_at.or(rings[k].recon.first().copied());
+                    misplaced.push(k);
                 } else if let Some(&s) = rings[k].span_of.get(seg) {
                     failing[k].push(s as usize);
                     problem_at = problem_at.or(rings[k].recon.get(seg).copied());
+                }
+            }
+            // A ring on the wrong side of another (a hole outside its shell, an island inside a
+            // neighbour) may be right where it is: the neighbour's rebuild can be what is wrong,
+            // even when this ring already keeps every vertex. Every ring whose rebuild and
+            // original disagree about the misplaced ring's probe is refined next to it too.
+            for k in misplaced {
+                let r = &rings[k].recon;
+                if r.len() < 2 {
+                    continue;
+                }
+                let p = [(r[0][0] + r[1][0]) / 2.0, (r[0][1] + r[1][1]) / 2.0];
+                for (h, other) in rings.iter().enumerate() {
+                    if h != k {
+                        if let Some(s) = other.wrong_side(p) {
+                            failing[h].push(s);
+                        }
+                    }
                 }
             }
         }
