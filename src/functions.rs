@@ -152,6 +152,30 @@ fn _ct_encode_wkb(
     Some(CircleTree::new(value))
 }
 
+/// [`_ct_encode_wkb`]'s counterpart for `ct_encode_within`: the fewest bytes within `max_error`.
+/// NULL geometry or max_error give NULL.
+#[pg_extern(immutable, parallel_safe)]
+fn _ct_encode_within_wkb(
+    wkb: Option<&[u8]>,
+    srid: Option<i32>,
+    invalid_reason: Option<&str>,
+    max_error: Option<f64>,
+) -> Option<CircleTree> {
+    let (wkb, max_error) = (wkb?, max_error?);
+    let (value, report) = circletree_core::encode::encode_within(
+        wkb,
+        srid.unwrap_or(0),
+        max_error,
+        invalid_reason,
+        &mut interrupt,
+    )
+    .or_raise();
+    if report.dropped_zm {
+        pgrx::notice!("circletree: the geometry's Z and M values were dropped; circletree stores 2D boundaries");
+    }
+    Some(CircleTree::new(value))
+}
+
 fn original(wkb: &[u8]) -> Vec<circletree_core::geometry::Polygon> {
     circletree_core::wkb::read(wkb).or_raise().shape.parts
 }

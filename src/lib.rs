@@ -32,6 +32,14 @@ CREATE FUNCTION ct_encode(geom geometry, min_radius float8, overlap float8 DEFAU
             CASE WHEN GeometryType($1) IN ('POLYGON', 'MULTIPOLYGON') AND NOT ST_IsValid($1)
                  THEN ST_IsValidReason($1) END,
             $2, $3, $4, $5) $$;
+-- The fewest bytes whose ct_decode is valid and within max_error (points only, on the grid that
+-- gives the fewest bytes; see docs/ALGORITHM.md).
+CREATE FUNCTION ct_encode_within(geom geometry, max_error float8)
+    RETURNS circletree LANGUAGE sql IMMUTABLE PARALLEL SAFE
+    AS $$ SELECT _ct_encode_within_wkb(ST_AsBinary($1), ST_SRID($1),
+            CASE WHEN GeometryType($1) IN ('POLYGON', 'MULTIPOLYGON') AND NOT ST_IsValid($1)
+                 THEN ST_IsValidReason($1) END,
+            $2) $$;
 
 CREATE FUNCTION ct_storage_ratio(ct circletree, geom geometry) RETURNS float8
     LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
@@ -75,6 +83,7 @@ CREATE FUNCTION ct_sweep(geom geometry,
         "circletree_binary_io",
         functions::_ct_decode_wkb,
         functions::_ct_decode_curved_wkt,
+        functions::_ct_encode_within_wkb,
         functions::ct_srid
     ]
 );

@@ -1,8 +1,9 @@
 //! Encode every real polygon at one setting and print circles, bytes and time:
-//! `cargo run --release -p circletree-core --example corpus -- 5 0.4 10`
+//! `cargo run --release -p circletree-core --example corpus -- 5 0.4 10`; with `CT_WITHIN=1`,
+//! `encode_within` at the third number.
 #[path = "../tests/common/mod.rs"]
 mod common;
-use circletree_core::encode::{encode, Options};
+use circletree_core::encode::{encode, encode_within, Options};
 use circletree_core::format::CircleTree;
 use std::time::Instant;
 
@@ -37,7 +38,11 @@ fn main() {
     let only: Vec<&str> = only.iter().map(|s| s.as_str()).collect();
     for s in common::load(&only) {
         let t = Instant::now();
-        let res = encode(&s.wkb, s.srid, &o, &mut || {});
+        let res = if std::env::var("CT_WITHIN").is_ok() {
+            encode_within(&s.wkb, s.srid, o.dp_tolerance.expect("t"), None, &mut || {})
+        } else {
+            encode(&s.wkb, s.srid, &o, &mut || {})
+        };
         let dt = t.elapsed().as_secs_f64();
         tt += dt;
         match res {

@@ -2,7 +2,7 @@
 //! and arcs. Pure Rust, no PostgreSQL: the extension's glue only moves bytes and maps errors.
 //!
 //! One module per step: [`wkb`] (input/output), [`medial`] (Voronoi circles, paper 3.1),
-//! [`filter`] (3.3), [`douglas_peucker`] (3.5), [`reconstruct`] (tangents and arcs, 3.5),
+//! [`filter`] (3.3), [`douglas_peucker`] (3.5), [`min_points`] (fewest points within a tolerance), [`reconstruct`] (tangents and arcs, 3.5),
 //! [`validity`], [`encode`] (the pipeline and its closed repair loop), [`format`] (the stored
 //! bytes), [`text`] (the text form), [`metrics`] (sliver area, Hausdorff).
 #![forbid(unsafe_code)]
@@ -20,6 +20,7 @@ pub mod geometry;
 pub mod grid;
 pub mod medial;
 pub mod metrics;
+pub mod min_points;
 pub mod reconstruct;
 pub mod text;
 pub mod touch;

@@ -5,7 +5,7 @@
 //! measured by `metrics` (arcs stroked a hundred times finer than the encoder's own check).
 mod common;
 
-use circletree_core::encode::{encode, Options};
+use circletree_core::encode::{encode, encode_within, Options, Report};
 use circletree_core::format::CircleTree;
 use circletree_core::validity::{problems, RingRef};
 use circletree_core::{decode, metrics, wkb};
@@ -23,11 +23,21 @@ fn check_only(min_radius: f64, dp: f64, names: &[&str]) {
         dp_tolerance: Some(dp),
         max_error: None,
     };
-    let max_error = min_radius.max(dp);
+    check_encoder(min_radius.max(dp), names, |s| {
+        encode(&s.wkb, s.srid, &opts, &mut || {})
+    });
+}
+
+/// The promise for any encoder of the corpus's polygons.
+fn check_encoder(
+    max_error: f64,
+    names: &[&str],
+    encoder: impl Fn(&common::Sample) -> circletree_core::Result<(CircleTree, Report)>,
+) {
     let mut failures = Vec::new();
     for s in common::load(names) {
         let original = wkb::read(&s.wkb).expect("read").shape;
-        let (ct, _) = match encode(&s.wkb, s.srid, &opts, &mut || {}) {
+        let (ct, _) = match encoder(&s) {
             Ok(v) => v,
             Err(e) => {
                 failures.push(format!("{}: {e}", s.name));
@@ -97,6 +107,16 @@ fn every_polygon_at_250_500() {
     // Coarse: small islands of Chatham sat inside their neighbour's coarse rebuild, which was
     // never the ring blamed (0.2.0 before the fix: "rebuilt rings touch or cross").
     check(250.0, 500.0);
+}
+
+#[test]
+fn every_polygon_within_10_25_100() {
+    // ct_encode_within: every plan it keeps passed the same closed loop; checked again here.
+    for t in [10.0, 25.0, 100.0] {
+        check_encoder(t, &[], |s| {
+            encode_within(&s.wkb, s.srid, t, None, &mut || {})
+        });
+    }
 }
 
 #[test]

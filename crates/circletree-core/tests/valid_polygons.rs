@@ -1,7 +1,7 @@
 //! Every valid polygon encodes (or is refused with a parameter error), and every value the encoder
 //! returns reads back and rebuilds valid and within `max_error`, however finely its arcs are
 //! stroked. Validity is judged by `geo`'s OGC validation, not by the encoder's own checker.
-use circletree_core::encode::{encode, Options};
+use circletree_core::encode::{encode, encode_within, Options};
 use circletree_core::format::CircleTree;
 use circletree_core::geometry::{Kind, Polygon, Pt};
 use circletree_core::{decode, metrics, wkb, Error};
@@ -18,7 +18,8 @@ fn opts(min_radius: f64, dp: f64, max_error: Option<f64>) -> Options {
     }
 }
 
-/// Encode; when it succeeds, check the promise and return the value.
+/// Encode, with `ct_encode`'s options and with `encode_within` at the same bound; when it
+/// succeeds, check the promise and return the value (`encode`'s).
 fn promise(kind: Kind, parts: &[Polygon], o: &Options) -> Result<CircleTree, Error> {
     let input = wkb::write(kind, parts);
     let original = wkb::to_geo(parts);
@@ -27,24 +28,36 @@ fn promise(kind: Kind, parts: &[Polygon], o: &Options) -> Result<CircleTree, Err
         "the generator made an invalid input: {:?}",
         original.validation_errors()
     );
+    let bound = o.check()?;
+    match encode_within(&input, 32633, bound, None, &mut || {}) {
+        Ok((ct, _)) => {
+            kept(&ct, parts, bound, "encode_within");
+        }
+        Err(Error::InvalidParameter { .. }) => {}
+        Err(e) => panic!("encode_within refused a valid polygon: {e}"),
+    }
     let (ct, _) = encode(&input, 32633, o, &mut || {})?;
+    Ok(kept(&ct, parts, bound, "encode"))
+}
+
+/// The value reads back and rebuilds valid, with its parts, within `bound`.
+fn kept(ct: &CircleTree, parts: &[Polygon], bound: f64, who: &str) -> CircleTree {
     let ct = CircleTree::from_bytes(&ct.to_bytes()).expect("what encode returns reads back");
-    let bound = o.check().expect("checked");
     let g = ct.grid_f64();
     for tol in [g, g / 7.0, g / 1000.0] {
         let rebuilt = decode::polygons(&ct, tol);
         let geo = wkb::to_geo(&rebuilt);
         assert!(
             geo.is_valid(),
-            "invalid at arc tolerance {tol}: {:?}\n{:?}",
+            "{who}: invalid at arc tolerance {tol}: {:?}\n{:?}",
             geo.validation_errors(),
             rebuilt
         );
         assert_eq!(rebuilt.len(), parts.len());
     }
     let h = metrics::value_hausdorff(&ct, parts, &mut || {});
-    assert!(h <= bound * (1.0 + 1e-9), "Hausdorff {h} > {bound}");
-    Ok(ct)
+    assert!(h <= bound * (1.0 + 1e-9), "{who}: Hausdorff {h} > {bound}");
+    ct
 }
 
 fn square(x: f64, y: f64, s: f64) -> Vec<Pt> {
