@@ -2,10 +2,13 @@
 //! shortcut graph, with Chan and Chin's wedge test for which shortcuts are allowed), searched within
 //! a bounded window so the cost stays O(n · window) rather than O(n²) or worse.
 //!
-//! Douglas-Peucker keeps points where the farthest vertex lies and is not minimal: on the corpus it
-//! keeps 10-30% more points than needed at the same tolerance. Here a shortcut from vertex `i` to
-//! vertex `j` is allowed when every vertex between them lies within `tol` of the segment; the fewest
-//! shortcuts from one fixed vertex to the next is a shortest path in that graph.
+//! Douglas-Peucker keeps points where the farthest vertex lies and is not minimal. Here a shortcut
+//! from vertex `i` to vertex `j` is allowed when every vertex between them lies within `tol` of the
+//! segment between the two, *as stored* (each end snapped to the grid, so the rounding is measured,
+//! not budgeted); the fewest shortcuts from one fixed vertex to the next is a shortest path in that
+//! graph. The chain then lies within `tol` of the ring and the ring within `max(tol, the largest
+//! rounding)` of the chain: the ring runs inside the band around each shortcut from near one end
+//! to near the other.
 
 use crate::geometry::{dist_to_segment, Pt};
 
@@ -15,7 +18,7 @@ const WINDOW: usize = 256;
 /// Indices of the vertices kept, ascending: every index of `fixed` (vertex 0 when there is none)
 /// and between consecutive fixed vertices the fewest that keep every skipped vertex within `tol`
 /// of its shortcut. The ring is closed (its last vertex joins its first).
-pub fn keep(ring: &[Pt], tol: f64, fixed: &[usize]) -> Vec<usize> {
+pub fn keep(ring: &[Pt], tol: f64, fixed: &[usize], snap: &dyn Fn(Pt) -> Pt) -> Vec<usize> {
     let n = ring.len();
     if n <= 3 {
         return (0..n).collect();
@@ -37,7 +40,7 @@ pub fn keep(ring: &[Pt], tol: f64, fixed: &[usize]) -> Vec<usize> {
     for (k, &a) in anchors.iter().enumerate() {
         let b = anchors.get(k + 1).copied().unwrap_or(anchors[0] + n);
         kept.push(a);
-        kept.extend(chain(ring, a, b, tol).into_iter().map(|v| v % n));
+        kept.extend(chain(ring, a, b, tol, snap).into_iter().map(|v| v % n));
     }
     kept.sort_unstable();
     kept.dedup();
@@ -45,13 +48,14 @@ pub fn keep(ring: &[Pt], tol: f64, fixed: &[usize]) -> Vec<usize> {
 }
 
 /// The fewest interior vertices of the chain `a..=b` (indices modulo the ring's length) to keep.
-fn chain(ring: &[Pt], a: usize, b: usize, tol: f64) -> Vec<usize> {
+fn chain(ring: &[Pt], a: usize, b: usize, tol: f64, snap: &dyn Fn(Pt) -> Pt) -> Vec<usize> {
     let n = ring.len();
     let len = b - a;
     if len <= 1 {
         return Vec::new();
     }
     let p = |k: usize| ring[(a + k) % n];
+    let stored: Vec<Pt> = (0..=len).map(|k| snap(p(k))).collect();
     // hops[k]: fewest shortcuts from 0 to k; from[k]: the vertex before k on that path
     let mut hops = vec![usize::MAX; len + 1];
     let mut from = vec![0usize; len + 1];
@@ -66,12 +70,12 @@ fn chain(ring: &[Pt], a: usize, b: usize, tol: f64) -> Vec<usize> {
             hops[i + 1] = next;
             from[i + 1] = i;
         }
-        let mut wedge = Wedge::new(p(i), tol);
+        let mut wedge = Wedge::new(stored[i], tol);
         for j in i + 2..=len.min(i + WINDOW) {
             if !wedge.add(p(j - 1)) {
                 break;
             }
-            if next < hops[j] && wedge.allows(p(j)) && wedge.fits(ring, a, i, j) {
+            if next < hops[j] && wedge.allows(stored[j]) && wedge.fits(ring, a, i, j, stored[j]) {
                 hops[j] = next;
                 from[j] = i;
             }
@@ -150,11 +154,11 @@ impl Wedge {
         }
     }
 
-    /// Exact check of the shortcut `i..j` of the chain starting at ring index `a`, when a vertex
-    /// may lie beyond its end (else the wedge has already proved it).
-    fn fits(&self, ring: &[Pt], a: usize, i: usize, j: usize) -> bool {
+    /// Exact check of the shortcut `i..j` of the chain starting at ring index `a`, from the origin
+    /// to `pj`, when a vertex may lie beyond its end (else the wedge has already proved it).
+    fn fits(&self, ring: &[Pt], a: usize, i: usize, j: usize, pj: Pt) -> bool {
         let n = ring.len();
-        let (pi, pj) = (ring[(a + i) % n], ring[(a + j) % n]);
+        let pi = self.origin;
         let (len, _) = self.polar(pj);
         if self.farthest <= len {
             return true;
@@ -203,14 +207,14 @@ mod tests {
             }
         }
         // corner to corner the wiggles stay within 0.6 of the chord
-        let kept = keep(&ring, 0.7, &[]);
+        let kept = keep(&ring, 0.7, &[], &|p| p);
         assert_eq!(kept, vec![0, 10, 20, 30]);
         assert!(within(&ring, &kept, 0.7));
         // a fixed vertex is kept
-        let kept = keep(&ring, 0.7, &[5]);
+        let kept = keep(&ring, 0.7, &[5], &|p| p);
         assert!(kept.contains(&5) && within(&ring, &kept, 0.7), "{kept:?}");
         // below the wiggle, every vertex
-        assert_eq!(keep(&ring, 0.2, &[]).len(), 40);
+        assert_eq!(keep(&ring, 0.2, &[], &|p| p).len(), 40);
     }
 
     #[test]
@@ -224,7 +228,7 @@ mod tests {
             })
             .collect();
         for tol in [1.0, 10.0, 40.0, 150.0] {
-            let ours = keep(&ring, tol, &[]);
+            let ours = keep(&ring, tol, &[], &|p| p);
             let dp = crate::douglas_peucker::keep(&ring, tol);
             assert!(within(&ring, &ours, tol), "{tol}");
             assert!(

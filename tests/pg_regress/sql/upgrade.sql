@@ -24,5 +24,25 @@ INSERT INTO stored SELECT 2, ct_encode(ct_decode(ct), 50, 0.4, 100) FROM stored 
 SELECT id, ct_summary(ct)->>'format_version' AS version, ST_IsValid(ct_decode(ct)) AS valid,
        ct_hausdorff(ct_decode(s.ct), (SELECT ct_decode(ct) FROM stored WHERE id = 1)) <= 100 AS within
   FROM stored s ORDER BY id;
+-- ct_encode_within (0.3.0) after the update
+SELECT ct_summary(ct_encode_within(ct_decode(ct), 100))->>'format_version' AS version,
+       ct_hausdorff(ct_encode_within(ct_decode(ct), 100), ct_decode(ct)) <= 100 AS within
+  FROM stored WHERE id = 1;
+-- The updated extension has the objects of a fresh install, with the same function bodies,
+-- volatility, strictness and parallel safety (the fresh one is circletree_regress's).
+SELECT md5(string_agg(o.descr, E'\n' ORDER BY o.descr)) AS objects
+  FROM (SELECT pg_describe_object(d.classid, d.objid, 0) || ' ' ||
+               coalesce(p.prosrc || ' ' || p.provolatile || p.proisstrict || p.proparallel, '') AS descr
+          FROM pg_depend d
+          LEFT JOIN pg_proc p ON d.classid = 'pg_proc'::regclass AND p.oid = d.objid
+         WHERE d.refclassid = 'pg_extension'::regclass AND d.deptype = 'e'
+           AND d.refobjid = (SELECT oid FROM pg_extension WHERE extname = 'circletree')) o \gset updated_
 \c circletree_regress
+SELECT md5(string_agg(o.descr, E'\n' ORDER BY o.descr)) = :'updated_objects' AS same_as_a_fresh_install
+  FROM (SELECT pg_describe_object(d.classid, d.objid, 0) || ' ' ||
+               coalesce(p.prosrc || ' ' || p.provolatile || p.proisstrict || p.proparallel, '') AS descr
+          FROM pg_depend d
+          LEFT JOIN pg_proc p ON d.classid = 'pg_proc'::regclass AND p.oid = d.objid
+         WHERE d.refclassid = 'pg_extension'::regclass AND d.deptype = 'e'
+           AND d.refobjid = (SELECT oid FROM pg_extension WHERE extname = 'circletree')) o;
 DROP DATABASE circletree_upgrade;
