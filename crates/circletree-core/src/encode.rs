@@ -643,6 +643,7 @@ struct Context<'a> {
     circles: bool,
 }
 
+#[allow(clippy::too_many_arguments)]
 fn initial_entries(
     ring: &[Pt],
     pinned: &[usize],
