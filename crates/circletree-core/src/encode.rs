@@ -385,6 +385,9 @@ pub fn encode_within(
     interrupt: &mut dyn FnMut(),
 ) -> Result<(CircleTree, Report)> {
     positive("max_error", max_error)?;
+    if !(MAX_ERROR_RANGE.0..=MAX_ERROR_RANGE.1).contains(&max_error) {
+        return Err(range_error(max_error));
+    }
     let checked = Options {
         min_radius: max_error,
         overlap: 0.0,

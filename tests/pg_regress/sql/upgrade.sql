@@ -32,7 +32,7 @@ SELECT ct_summary(ct_encode_within(ct_decode(ct), 100))->>'format_version' AS ve
 -- volatility, strictness and parallel safety (the fresh one is circletree_regress's).
 SELECT md5(string_agg(o.descr, E'\n' ORDER BY o.descr)) AS objects
   FROM (SELECT pg_describe_object(d.classid, d.objid, 0) || ' ' ||
-               coalesce(p.prosrc || ' ' || p.provolatile || p.proisstrict || p.proparallel, '') AS descr
+               coalesce(p.prosrc || ' ' || p.provolatile::text || p.proisstrict::text || p.proparallel::text, '') AS descr
           FROM pg_depend d
           LEFT JOIN pg_proc p ON d.classid = 'pg_proc'::regclass AND p.oid = d.objid
          WHERE d.refclassid = 'pg_extension'::regclass AND d.deptype = 'e'
@@ -40,7 +40,7 @@ SELECT md5(string_agg(o.descr, E'\n' ORDER BY o.descr)) AS objects
 \c circletree_regress
 SELECT md5(string_agg(o.descr, E'\n' ORDER BY o.descr)) = :'updated_objects' AS same_as_a_fresh_install
   FROM (SELECT pg_describe_object(d.classid, d.objid, 0) || ' ' ||
-               coalesce(p.prosrc || ' ' || p.provolatile || p.proisstrict || p.proparallel, '') AS descr
+               coalesce(p.prosrc || ' ' || p.provolatile::text || p.proisstrict::text || p.proparallel::text, '') AS descr
           FROM pg_depend d
           LEFT JOIN pg_proc p ON d.classid = 'pg_proc'::regclass AND p.oid = d.objid
          WHERE d.refclassid = 'pg_extension'::regclass AND d.deptype = 'e'

@@ -12,7 +12,8 @@ SELECT t, count(*) AS polygons,
        count(*) FILTER (WHERE ST_NumGeometries(ct_decode(ct)) = ST_NumGeometries(geom)) AS same_parts,
        count(*) FILTER (WHERE ct_hausdorff(ct, geom) <= t) AS within_t,
        count(*) FILTER (WHERE ct_summary(ct)->>'format_version' = '2') AS format_v2,
-       count(*) FILTER (WHERE (ct_summary(ct)->>'max_error')::float8 = t) AS bound_recorded
+       count(*) FILTER (WHERE (ct_summary(ct)->'params'->>'max_error')::float8 = t) AS bound_recorded,
+       count(*) FILTER (WHERE (ct_summary(ct)->>'internal')::int + (ct_summary(ct)->>'external')::int = 0) AS points_only
   FROM within_enc GROUP BY t ORDER BY t;
 -- Issue 13's target: at most 0.8x the bytes of DP + TWKB, summed over the set (the ratio is shown
 -- to two decimals, so a change of the encoder shows here)
