@@ -12,14 +12,24 @@ pub struct Sample {
     pub wkb: Vec<u8>,
 }
 
-/// All polygons of tests/data/polygons.tsv.gz (or only those named).
+/// All polygons of tests/data/polygons.tsv.gz (or only those named); with `CT_DATA=holdout` in
+/// the environment, those of tests/data/holdout.tsv.gz instead.
 pub fn load(only: &[&str]) -> Vec<Sample> {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../tests/data/polygons.tsv.gz"
+    let file = match std::env::var("CT_DATA").as_deref() {
+        Ok("holdout") => "holdout",
+        _ => "polygons",
+    };
+    load_file(file, only)
+}
+
+/// The polygons of tests/data/`file`.tsv.gz (or only those named).
+pub fn load_file(file: &str, only: &[&str]) -> Vec<Sample> {
+    let path = format!(
+        "{}/../../tests/data/{file}.tsv.gz",
+        env!("CARGO_MANIFEST_DIR")
     );
     let mut text = String::new();
-    flate2::read::GzDecoder::new(std::fs::File::open(path).expect("tests/data/polygons.tsv.gz"))
+    flate2::read::GzDecoder::new(std::fs::File::open(&path).expect("tests/data/*.tsv.gz"))
         .read_to_string(&mut text)
         .expect("gzip");
     let mut out = Vec::new();

@@ -1,0 +1,123 @@
+//! What a plan starts from, per ring: the paper's circles (medial circles filtered and mapped to
+//! runs of edges, sections 3.1-3.3) with Douglas-Peucker points where no circle covers the boundary
+//! (3.5), or the fewest points within a tolerance alone ([`crate::min_points`]); the input's touch
+//! points always. Ordered along the ring by the first vertex each stands for.
+
+use super::{Options, Report};
+use crate::geometry::Pt;
+use crate::grid::Grid;
+use crate::{douglas_peucker, filter, medial};
+
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Entry {
+    pub(super) c: Pt,
+    pub(super) r: f64,
+    pub(super) anchor: usize,
+    pub(super) repaired: bool,
+    /// New, or next to a change, since the last check.
+    pub(super) touched: bool,
+}
+
+#[allow(clippy::too_many_arguments)]
+pub(super) fn initial_entries(
+    ring: &[Pt],
+    pinned: &[usize],
+    circles: bool,
+    grid: Grid,
+    opts: &Options,
+    max_error: f64,
+    interrupt: &mut dyn FnMut(),
+    report: &mut Report,
+) -> Vec<Entry> {
+    let n = ring.len();
+    let kept = if circles {
+        let cands = medial::candidates(ring, interrupt);
+        let runs = filter::map_runs(ring, &cands, opts.min_radius, max_error / 2.0);
+        interrupt();
+        filter::select(n, runs, opts.overlap)
+    } else {
+        Vec::new()
+    };
+    report.filtered_circles += kept.len();
+    let mut entries: Vec<Entry> = kept
+        .iter()
+        .map(|m| Entry {
+            c: m.c,
+            r: m.r,
+            anchor: m.start,
+            repaired: false,
+            touched: true,
+        })
+        .collect();
+    entries.extend(pinned.iter().map(|&v| Entry {
+        c: ring[v],
+        r: 0.0,
+        anchor: v,
+        repaired: false,
+        touched: true,
+    }));
+    if !circles {
+        // points alone: the fewest within the tolerance, the touch points among them
+        if let Some(tol) = opts.dp_tolerance {
+            let snap = |p: Pt| [grid.snap(p[0]), grid.snap(p[1])];
+            for v in crate::min_points::keep(ring, tol, pinned, &snap) {
+                if !pinned.contains(&v) {
+                    entries.push(Entry {
+                        c: ring[v],
+                        r: 0.0,
+                        anchor: v,
+                        repaired: false,
+                        touched: true,
+                    });
+                    report.dp_points += 1;
+                }
+            }
+        }
+    } else if let Some(dp) = opts.dp_tolerance {
+        // covered[v]: vertex v lies on a kept run (its ends included: a point on a circle has a
+        // degenerate tangent to it)
+        let mut covered = vec![false; n];
+        for m in &kept {
+            for k in 0..=m.len {
+                covered[(m.start + k) % n] = true;
+            }
+        }
+        for v in douglas_peucker::keep(ring, dp) {
+            if !covered[v] {
+                entries.push(Entry {
+                    c: ring[v],
+                    r: 0.0,
+                    anchor: v,
+                    repaired: false,
+                    touched: true,
+                });
+                report.dp_points += 1;
+            }
+        }
+    }
+    if entries.iter().filter(|e| e.r == 0.0).count()
+        + 3 * entries.iter().filter(|e| e.r != 0.0).count()
+        < 3
+    {
+        for v in [0, n / 3, 2 * n / 3] {
+            entries.push(Entry {
+                c: ring[v],
+                r: 0.0,
+                anchor: v,
+                repaired: true,
+                touched: true,
+            });
+        }
+    }
+    sort_entries(&mut entries);
+    entries
+}
+
+pub(super) fn sort_entries(entries: &mut Vec<Entry>) {
+    entries.sort_by(|a, b| {
+        a.anchor
+            .cmp(&b.anchor)
+            .then((a.r != 0.0).cmp(&(b.r != 0.0)))
+    });
+    entries.dedup_by(|b, a| a.anchor == b.anchor && a.r == 0.0 && b.r == 0.0);
+}

@@ -1,0 +1,513 @@
+//! The closed loop every encoder's result must pass (the paper had none): quantize the circles to
+//! the grid and rebuild every ring as `ct_decode` will, measure the continuous Hausdorff distance
+//! span by span, check OGC validity on the stroke and on the true arcs, and where a span fails add
+//! an original vertex inside it as a zero-radius circle, until nothing fails or nothing is left to
+//! add (then the caller refines the grid).
+
+use super::initial::{initial_entries, sort_entries, Entry};
+use super::{Options, Report};
+use crate::arcs;
+use crate::error::Result;
+use crate::format::Circle;
+use crate::geometry::{dist2_to_segment, Pt, Shape};
+use crate::grid::Grid;
+use crate::metrics::{segment_max, segment_max_in};
+use crate::reconstruct::{ring_spans, stroke_spans};
+use crate::validity::{point_in_ring, problems_where, RingRef, Touches};
+use rstar::primitives::Line;
+use rstar::RTree;
+
+pub(super) struct RingState {
+    pts: Vec<Pt>,
+    pub(super) part: usize,
+    index: usize,
+    entries: Vec<Entry>,
+    pub(super) circles: Vec<Circle>,
+    recon: Vec<Pt>,
+    span_of: Vec<u32>,
+    /// `starts[s]..starts[s + 1]`: the segments of `recon` that span `s` starts.
+    starts: Vec<usize>,
+    /// The rebuilt pieces (true arcs), for [`arcs::problems`].
+    spans: crate::reconstruct::Spans,
+    /// Spans whose stroke may differ from the last check.
+    dirty: Vec<bool>,
+}
+
+/// Spans within this many of a touched circle are checked again. A span depends on the circles
+/// from one before it to two after it (the corner case reads the tangent after next), and the
+/// Hausdorff window reaches [`WINDOW`] spans further either way.
+const DIRTY_REACH: usize = WINDOW + 2;
+
+/// A span is measured against the spans this many before and after it, too. Two, not one: circles
+/// whose vertices round to the same grid point leave a span with no stroke of its own, and its
+/// neighbour's stroke then reaches across it.
+const WINDOW: usize = 2;
+
+/// Above this many target segments a window is searched through an R-tree, not by brute force.
+const BRUTE_FORCE_LIMIT: usize = 96;
+
+impl RingState {
+    fn m(&self) -> usize {
+        self.entries.len()
+    }
+
+    /// Spans whose original edges and strokes a span is measured against: itself and [`WINDOW`]
+    /// neighbours either side (every span when there are no more). Measuring against a subset can
+    /// only overestimate the distance, so a span that passes is within the bound globally too.
+    fn window(&self, s: usize) -> Vec<usize> {
+        let m = self.m();
+        if m <= 2 * WINDOW + 1 {
+            (0..m).collect()
+        } else {
+            (0..=2 * WINDOW).map(|d| (s + m + d - WINDOW) % m).collect()
+        }
+    }
+
+    /// Original vertex indices whose edge (to the next vertex) span `s` stands for.
+    fn orig_edges(&self, s: usize) -> std::ops::Range<usize> {
+        let (n, m) = (self.pts.len(), self.m());
+        if m == 1 {
+            return 0..n;
+        }
+        let a = self.entries[s].anchor;
+        let b = if s + 1 < m {
+            self.entries[s + 1].anchor
+        } else {
+            self.entries[0].anchor + n
+        };
+        a..b
+    }
+
+    fn orig_seg(&self, v: usize) -> (Pt, Pt) {
+        let n = self.pts.len();
+        (self.pts[v % n], self.pts[(v + 1) % n])
+    }
+
+    fn recon_seg(&self, i: usize) -> (Pt, Pt) {
+        let n = self.recon.len();
+        (self.recon[i], self.recon[(i + 1) % n])
+    }
+
+    fn window_orig(&self, s: usize) -> Vec<(Pt, Pt)> {
+        self.window(s)
+            .into_iter()
+            .flat_map(|t| self.orig_edges(t))
+            .map(|v| self.orig_seg(v))
+            .collect()
+    }
+
+    fn window_recon(&self, s: usize) -> Vec<(Pt, Pt)> {
+        self.window(s)
+            .into_iter()
+            .flat_map(|t| self.starts[t]..self.starts[t + 1])
+            .map(|i| self.recon_seg(i))
+            .collect()
+    }
+
+    /// Are span `s` and every span of its window straight (between two zero-radius circles)?
+    fn straight_window(&self, s: usize) -> bool {
+        let m = self.m();
+        m > 1
+            && self
+                .window(s)
+                .into_iter()
+                .all(|t| self.entries[t].r == 0.0 && self.entries[(t + 1) % m].r == 0.0)
+    }
+
+    /// Is span `s` the original edge between two kept vertices (nothing left to refine)?
+    fn exact(&self, s: usize) -> bool {
+        let m = self.m();
+        self.entries[s].r == 0.0
+            && self.entries[(s + 1) % m].r == 0.0
+            && self.orig_edges(s).len() <= 1
+    }
+
+    /// The span to refine when `p` lies on the wrong side of this ring's rebuild (inside it and
+    /// outside the original, or the other way round): the one, not yet exact, whose stroke is
+    /// nearest to `p`. `None` when rebuild and original agree about `p`, or nothing is left.
+    fn wrong_side(&self, p: Pt) -> Option<usize> {
+        if self.recon.len() < 3 || point_in_ring(p, &self.recon) == point_in_ring(p, &self.pts) {
+            return None;
+        }
+        (0..self.recon.len())
+            .filter_map(|i| {
+                let s = self.span_of[i] as usize;
+                let (a, b) = self.recon_seg(i);
+                (!self.exact(s)).then(|| (dist2_to_segment(p, a, b), s))
+            })
+            .min_by(|x, y| x.0.total_cmp(&y.0))
+            .map(|(_, s)| s)
+    }
+
+    /// Does every point of span `s`, and of the original edges it stands for, lie within
+    /// `target` of the other boundary (measured on the windows)?
+    fn span_fits(&self, s: usize, target: f64, eps: f64) -> bool {
+        let recon = self.window_recon(s);
+        let own_orig = self.orig_edges(s).map(|v| self.orig_seg(v));
+        if !all_within(&recon, own_orig, target, eps) {
+            return false;
+        }
+        let orig = self.window_orig(s);
+        let own_recon = (self.starts[s]..self.starts[s + 1]).map(|i| self.recon_seg(i));
+        all_within(&orig, own_recon, target, eps)
+    }
+}
+
+/// Is every segment of `from` within `target` (to `eps`) of the segments `to`?
+fn all_within(
+    to: &[(Pt, Pt)],
+    mut from: impl Iterator<Item = (Pt, Pt)>,
+    target: f64,
+    eps: f64,
+) -> bool {
+    if to.len() <= BRUTE_FORCE_LIMIT {
+        from.all(|(a, b)| segment_max_in(to, a, b, target, eps) <= target + eps)
+    } else {
+        let tree: RTree<Line<[f64; 2]>> =
+            RTree::bulk_load(to.iter().map(|&(c, d)| Line::new(c, d)).collect());
+        from.all(|(a, b)| segment_max(&tree, a, b, target, eps) <= target + eps)
+    }
+}
+
+/// Spans to check again: those within [`DIRTY_REACH`] of a touched circle.
+fn dirty_spans(entries: &[Entry]) -> Vec<bool> {
+    let m = entries.len();
+    let mut dirty = vec![false; m];
+    if m <= 2 * DIRTY_REACH + 1 {
+        if entries.iter().any(|e| e.touched) {
+            dirty.fill(true);
+        }
+        return dirty;
+    }
+    for (i, e) in entries.iter().enumerate() {
+        if e.touched {
+            for d in 0..=2 * DIRTY_REACH {
+                dirty[(i + m + d - DIRTY_REACH) % m] = true;
+            }
+        }
+    }
+    dirty
+}
+
+/// Stroke spans and drop repeated points, as the decoder does, keeping each point's span.
+fn stroke_dedup(spans: &crate::reconstruct::Spans, tol: f64) -> (Vec<Pt>, Vec<u32>) {
+    let (mut pts, mut ids) = (Vec::new(), Vec::new());
+    stroke_spans(spans, tol, &mut pts, &mut ids);
+    let mut rp: Vec<Pt> = Vec::with_capacity(pts.len());
+    let mut ri: Vec<u32> = Vec::with_capacity(pts.len());
+    for (p, id) in pts.into_iter().zip(ids) {
+        if rp.last() != Some(&p) {
+            rp.push(p);
+            ri.push(id);
+        }
+    }
+    while rp.len() > 1 && rp.first() == rp.last() {
+        rp.pop();
+        ri.pop();
+    }
+    (rp, ri)
+}
+
+pub(super) enum Outcome {
+    Done(Vec<RingState>, usize),
+    /// Nothing left to repair; a point near the problem.
+    FinerGrid(Option<Pt>),
+}
+
+/// What every round of the loop reads.
+pub(super) struct Context<'a> {
+    pub(super) shape: &'a Shape,
+    /// Per part and ring: vertices where another ring touches (kept as zero-radius circles).
+    pub(super) pinned: &'a [Vec<Vec<usize>>],
+    /// Those touch points on the grid: the only points where two rebuilt rings may meet.
+    pub(super) allowed: &'a Touches,
+    /// Start from the paper's circles (else from Douglas-Peucker points alone).
+    pub(super) circles: bool,
+}
+
+/// One grid: start every ring from its plan, then repair until nothing fails.
+pub(super) fn verify_and_repair(
+    ctx: &Context,
+    opts: &Options,
+    max_error: f64,
+    grid: Grid,
+    interrupt: &mut dyn FnMut(),
+    report: &mut Report,
+) -> Result<Outcome> {
+    let shape = ctx.shape;
+    let g = grid.step_f64();
+    let target = max_error - g;
+    let mut rings: Vec<RingState> = Vec::new();
+    report.filtered_circles = 0;
+    report.dp_points = 0;
+    for (pi, part) in shape.parts.iter().enumerate() {
+        for (ri, ring) in part.iter().enumerate() {
+            let pinned = &ctx.pinned[pi][ri];
+            let entries = initial_entries(
+                ring,
+                pinned,
+                ctx.circles,
+                grid,
+                opts,
+                max_error,
+                interrupt,
+                report,
+            );
+            rings.push(RingState {
+                pts: ring.clone(),
+                part: pi,
+                index: ri,
+                entries,
+                circles: vec![],
+                recon: vec![],
+                span_of: vec![],
+                starts: vec![],
+                spans: vec![],
+                dirty: vec![],
+            });
+        }
+    }
+    let q = |v: f64| grid.quantize(v);
+    let unq = |k: i64| grid.coord(k);
+    let mut round = 0;
+    loop {
+        round += 1;
+        report.rounds = round;
+        interrupt();
+        let mut failing: Vec<Vec<usize>> = vec![Vec::new(); rings.len()];
+        for (k, st) in rings.iter_mut().enumerate() {
+            st.dirty = dirty_spans(&st.entries);
+            if !st.dirty.iter().any(|&d| d) {
+                continue;
+            }
+            for e in &mut st.entries {
+                e.touched = false;
+            }
+            st.circles = st
+                .entries
+                .iter()
+                .map(|e| Circle {
+                    x: q(e.c[0]),
+                    y: q(e.c[1]),
+                    r: q(e.r),
+                })
+                .collect();
+            let fc: Vec<[f64; 3]> = st
+                .circles
+                .iter()
+                .map(|c| [unq(c.x), unq(c.y), unq(c.r)])
+                .collect();
+            st.spans = ring_spans(&fc);
+            (st.recon, st.span_of) = stroke_dedup(&st.spans, g);
+            st.starts = (0..=st.m())
+                .map(|s| st.span_of.partition_point(|&x| (x as usize) < s))
+                .collect();
+            // Hausdorff, both ways, span by span. Where the window holds only straight spans,
+            // the stroke is the geometry itself and the whole bound is available (arcs keep a
+            // grid step of it for the decoder's stroke).
+            let eps = g * 1e-3;
+            let straight_target = max_error - 3.0 * eps;
+            for s in 0..st.m() {
+                let t = if !ctx.circles && st.straight_window(s) {
+                    straight_target
+                } else {
+                    target
+                };
+                if st.dirty[s] && !st.span_fits(s, t, eps) {
+                    failing[k].push(s);
+                }
+            }
+        }
+        interrupt();
+        let mut problem_at: Option<Pt> = None;
+        {
+            let refs: Vec<RingRef> = rings
+                .iter()
+                .map(|r| RingRef {
+                    part: r.part,
+                    ring: r.index,
+                    pts: &r.recon,
+                })
+                .collect();
+            let changed: Vec<Vec<bool>> = rings
+                .iter()
+                .map(|r| {
+                    r.span_of
+                        .iter()
+                        .map(|&s| r.dirty.get(s as usize).copied().unwrap_or(true))
+                        .collect()
+                })
+                .collect();
+            let mut misplaced = Vec::new();
+            for (k, seg) in problems_where(&refs, Some(&changed), ctx.allowed, interrupt) {
+                if seg == usize::MAX {
+                    failing[k].extend(0..rings[k].entries.len());
+                    problem_at = problem_at.or(rings[k].recon.first().copied());
+                    misplaced.push(k);
+                } else if let Some(&s) = rings[k].span_of.get(seg) {
+                    failing[k].push(s as usize);
+                    problem_at = problem_at.or(rings[k].recon.get(seg).copied());
+                }
+            }
+            // A ring on the wrong side of another (a hole outside its shell, an island inside a
+            // neighbour) may be right where it is: the neighbour's rebuild can be what is wrong,
+            // even when this ring already keeps every vertex. Every ring whose rebuild and
+            // original disagree about the misplaced ring's probe is refined next to it too.
+            for k in misplaced {
+                let r = &rings[k].recon;
+                if r.len() < 2 {
+                    continue;
+                }
+                let p = [(r[0][0] + r[1][0]) / 2.0, (r[0][1] + r[1][1]) / 2.0];
+                for (h, other) in rings.iter().enumerate() {
+                    if h != k {
+                        if let Some(s) = other.wrong_side(p) {
+                            failing[h].push(s);
+                        }
+                    }
+                }
+            }
+        }
+        {
+            // The true arcs between the stroked points.
+            let refs: Vec<arcs::ArcRing> = rings
+                .iter()
+                .map(|r| arcs::ArcRing {
+                    spans: &r.spans,
+                    dirty: Some(&r.dirty),
+                })
+                .collect();
+            let probes: Vec<Pt> = rings
+                .iter()
+                .map(|r| r.recon.first().copied().unwrap_or([0.0, 0.0]))
+                .collect();
+            for (k, s) in arcs::problems(&refs, &probes, g, g * 1e-6, interrupt) {
+                if s == usize::MAX {
+                    failing[k].extend(0..rings[k].entries.len());
+                } else {
+                    failing[k].push(s);
+                }
+                problem_at = problem_at.or(rings[k].recon.first().copied());
+            }
+        }
+        if failing.iter().all(Vec::is_empty) {
+            let repaired = rings
+                .iter()
+                .flat_map(|r| r.entries.iter())
+                .filter(|e| e.repaired)
+                .count();
+            return Ok(Outcome::Done(rings, repaired));
+        }
+        let hurry = round > 24;
+        let mut progress = false;
+        for (k, mut spans) in failing.into_iter().enumerate() {
+            if spans.is_empty() {
+                continue;
+            }
+            spans.sort_unstable();
+            spans.dedup();
+            let st = &mut rings[k];
+            if repair(st, &spans, target, hurry) {
+                progress = true;
+            }
+        }
+        if !progress {
+            // Every failing span is already an original edge between two kept vertices.
+            return Ok(Outcome::FinerGrid(problem_at));
+        }
+    }
+}
+
+/// Repair failing spans of one ring. `false` when no span had anything left to add or remove.
+fn repair(st: &mut RingState, spans: &[usize], target: f64, hurry: bool) -> bool {
+    let n = st.pts.len();
+    let m = st.entries.len();
+    let mut remove = vec![false; m];
+    let mut add: Vec<Entry> = Vec::new();
+    let point = |v: usize| Entry {
+        c: st.pts[v],
+        r: 0.0,
+        anchor: v,
+        repaired: true,
+        touched: true,
+    };
+    for &i in spans {
+        if i >= m {
+            continue;
+        }
+        let a = st.entries[i].anchor;
+        let b = if i + 1 < m {
+            st.entries[i + 1].anchor
+        } else {
+            st.entries[0].anchor + n
+        };
+        let interior: Vec<usize> = (a + 1..b).map(|v| v % n).collect();
+        if interior.is_empty() {
+            let j = (i + 1) % m;
+            if st.entries[i].r != 0.0 {
+                remove[i] = true;
+                add.push(point(a));
+            } else if st.entries[j].r != 0.0 {
+                remove[j] = true;
+                add.push(point(st.entries[j].anchor));
+            } else if m < n && a == b % n && m == 1 {
+                add.extend([point((a + n / 3) % n), point((a + 2 * n / 3) % n)]);
+            }
+            continue;
+        }
+        if hurry {
+            add.extend(interior.iter().map(|&v| point(v)));
+            for j in [i, (i + 1) % m] {
+                if st.entries[j].r != 0.0 {
+                    remove[j] = true;
+                    add.push(point(st.entries[j].anchor));
+                }
+            }
+            continue;
+        }
+        // the interior vertex farthest from the stroke, if it is far; else the middle one
+        let recon = st.window_recon(i);
+        let far = |v: usize| {
+            recon
+                .iter()
+                .map(|&(c, d)| dist2_to_segment(st.pts[v], c, d))
+                .fold(f64::INFINITY, f64::min)
+        };
+        let best = interior
+            .iter()
+            .map(|&v| (far(v), v))
+            .max_by(|x, y| x.0.total_cmp(&y.0));
+        let v = match best {
+            Some((d2, v)) if d2 > (target * 0.5).powi(2) => v,
+            _ => interior[interior.len() / 2],
+        };
+        add.push(point(v));
+    }
+    // Failing spans are checked again next round even where nothing could be done (then the
+    // round makes no progress and the grid is refined); neighbours of a removed circle change.
+    for &i in spans {
+        if i < m {
+            st.entries[i].touched = true;
+            st.entries[(i + 1) % m].touched = true;
+        }
+    }
+    let removed_at: Vec<usize> = (0..m).filter(|&i| remove[i]).collect();
+    for i in removed_at {
+        st.entries[(i + m - 1) % m].touched = true;
+        st.entries[(i + 1) % m].touched = true;
+    }
+    let before = st.entries.len();
+    let removed = remove.iter().filter(|&&r| r).count();
+    let mut next: Vec<Entry> = st
+        .entries
+        .iter()
+        .zip(&remove)
+        .filter(|(_, &r)| !r)
+        .map(|(e, _)| *e)
+        .collect();
+    next.extend(add);
+    sort_entries(&mut next);
+    let changed = removed > 0 || next.len() != before;
+    st.entries = next;
+    changed
+}
