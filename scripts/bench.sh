@@ -1,16 +1,20 @@
 #!/usr/bin/env bash
 # Regenerates BENCHMARKS.md (and docs/paper_experiment.svg) from this commit: release build and
-# install into the local PostgreSQL 15, load the 55 public polygons, run bench/benchmarks.sql
-# (sizes and errors against ST_Simplify + TWKB, the paper's experiment, speed against PostGIS's
-# functions), time the encoder alone on one synthetic coastline of 1e3 .. 1e6 vertices (time and
-# peak memory), then write the report with scripts/bench_report.py. About 3 minutes after the build.
+# install into the local PostgreSQL 15, load the 55 public polygons and the 27 held-out ones, run
+# bench/benchmarks.sql (sizes and errors of ct_encode_within and ct_encode against ST_Simplify and
+# ST_SimplifyPreserveTopology + TWKB, the paper's experiment, speed against PostGIS's functions),
+# the core's bytes_breakdown (format v1 against v2, where the bytes go) and decode_speed (v1
+# against v2) examples, time the encoder alone on one synthetic coastline of 1e3 .. 1e6 vertices
+# (time and peak memory), then write the report with scripts/bench_report.py (LZMA2 of every TWKB
+# value computed there). About 10 minutes after the build.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/setup.sh
 
 echo "== building and installing circletree (release)"
 cargo pgrx install --release --pg-config "$PG_CONFIG" </dev/null
-cargo build --release -q -p circletree-core --example scaling </dev/null
+cargo build --release -q -p circletree-core --example scaling --example bytes_breakdown \
+  --example decode_speed </dev/null
 
 out=$(mktemp -d)
 db=circletree_bench
@@ -20,14 +24,24 @@ SET client_min_messages = warning;
 CREATE EXTENSION circletree CASCADE;
 CREATE TABLE poly(name text, source text, srid int, npoints int, wkt text);
 \copy poly FROM PROGRAM 'gzip -dc tests/data/polygons.tsv.gz' WITH (FORMAT csv, DELIMITER E'\t', HEADER true, QUOTE E'\x01')
-CREATE TABLE coast AS SELECT name, source, npoints, ST_GeomFromText(wkt, srid) AS geom FROM poly;
+CREATE TABLE held(name text, source text, srid int, npoints int, wkt text);
+\copy held FROM PROGRAM 'gzip -dc tests/data/holdout.tsv.gz' WITH (FORMAT csv, DELIMITER E'\t', HEADER true, QUOTE E'\x01')
+CREATE TABLE coast AS
+SELECT p.dataset, CASE WHEN p.source LIKE 'GSHHG%' THEN 'GSHHG' WHEN p.source LIKE 'LINZ%' THEN 'LINZ' ELSE 'Stats NZ' END AS family,
+       p.name, p.source, p.npoints, ST_GeomFromText(p.wkt, p.srid) AS geom
+  FROM (SELECT 'public' AS dataset, * FROM poly UNION ALL SELECT 'holdout', * FROM held) p;
 SQL
 start=$(date +%s)
 psql -X -q -v ON_ERROR_STOP=1 -d "$db" -f bench/benchmarks.sql
-for t in bench_sizes bench_sweep bench_speed; do
+for t in bench_rows bench_sweep bench_speed; do
   psql -X -q -v ON_ERROR_STOP=1 -d "$db" -c "\\copy $t TO STDOUT WITH (FORMAT csv, HEADER true)" >"$out/$t.csv"
 done
 echo "== SQL benchmarks took $(($(date +%s) - start)) s"
+
+echo "== format v1 against v2, where the bytes go (core example bytes_breakdown)"
+target/release/examples/bytes_breakdown 10 25 100 >"$out/breakdown.csv"
+echo "== decode speed, v1 against v2 (core example decode_speed)"
+target/release/examples/decode_speed 10 25 100 | tee "$out/decode_speed.md"
 
 echo "== scaling: encode one synthetic coastline (time and peak memory)"
 echo "n,seconds,peak_kb,circles,bytes,wkb" >"$out/scaling.csv"

@@ -101,11 +101,26 @@ fn ct_summary(ct: CircleTree) -> pgrx::JsonB {
     }))
 }
 
-/// The rebuilt boundary as WKB, arcs stroked to `arc_tolerance` (NULL: the grid step).
+/// The rebuilt boundary as WKB, arcs stroked to `arc_tolerance` (NULL: the grid step). Kept for
+/// 0.3.0's SQL definitions (a database not yet updated calls it); 0.4.0's use `_ct_decode_ewkb`.
 #[pg_extern(immutable, parallel_safe)]
 fn _ct_decode_wkb(ct: Option<CircleTree>, arc_tolerance: Option<f64>) -> Option<Vec<u8>> {
     let ct = ct?;
     Some(decode::to_wkb(&ct.value, arc_tolerance).or_raise())
+}
+
+/// The rebuilt boundary as EWKB (the SRID inside), arcs stroked to `arc_tolerance` (NULL: the
+/// grid step): what `ct_decode` hands to `ST_GeomFromEWKB`, one decode per call.
+#[pg_extern(immutable, parallel_safe)]
+fn _ct_decode_ewkb(ct: Option<CircleTree>, arc_tolerance: Option<f64>) -> Option<Vec<u8>> {
+    let ct = ct?;
+    Some(decode::to_ewkb(&ct.value, arc_tolerance).or_raise())
+}
+
+/// The rebuilt boundary with true arcs, as EWKT (the SRID inside).
+#[pg_extern(immutable, strict, parallel_safe)]
+fn _ct_decode_curved_ewkt(ct: CircleTree) -> String {
+    decode::to_curved_ewkt(&ct.value)
 }
 
 /// The rebuilt boundary with true arcs, as WKT.

@@ -16,13 +16,13 @@ extension_sql!(
 -- resolved through the caller's search_path (PostgreSQL 15 has no @extschema:postgis@).
 CREATE FUNCTION ct_decode(ct circletree) RETURNS geometry
     LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
-    AS $$ SELECT ST_SetSRID(ST_GeomFromWKB(_ct_decode_wkb($1, NULL)), ct_srid($1)) $$;
+    AS $$ SELECT ST_GeomFromEWKB(_ct_decode_ewkb($1, NULL)) $$;
 CREATE FUNCTION ct_decode(ct circletree, arc_tolerance float8) RETURNS geometry
     LANGUAGE sql IMMUTABLE PARALLEL SAFE
-    AS $$ SELECT ST_SetSRID(ST_GeomFromWKB(_ct_decode_wkb($1, $2)), ct_srid($1)) $$;
+    AS $$ SELECT ST_GeomFromEWKB(_ct_decode_ewkb($1, $2)) $$;
 CREATE FUNCTION ct_decode_curved(ct circletree) RETURNS geometry
     LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
-    AS $$ SELECT ST_GeomFromText(_ct_decode_curved_wkt($1), ct_srid($1)) $$;
+    AS $$ SELECT ST_GeomFromEWKT(_ct_decode_curved_ewkt($1)) $$;
 
 -- Validity is PostGIS's own (ST_IsValid), so what PostGIS accepts, circletree accepts.
 CREATE FUNCTION ct_encode(geom geometry, min_radius float8, overlap float8 DEFAULT 0.4,
@@ -81,8 +81,8 @@ CREATE FUNCTION ct_sweep(geom geometry,
     name = "postgis_wrappers",
     requires = [
         "circletree_binary_io",
-        functions::_ct_decode_wkb,
-        functions::_ct_decode_curved_wkt,
+        functions::_ct_decode_ewkb,
+        functions::_ct_decode_curved_ewkt,
         functions::_ct_encode_within_wkb,
         functions::ct_srid
     ]

@@ -58,6 +58,36 @@ pub fn to_wkb(ct: &CircleTree, tol: Option<f64>) -> Result<Vec<u8>> {
     Ok(crate::wkb::write(ct.kind, &polygons(ct, tol)))
 }
 
+/// The rebuilt geometry as PostGIS's EWKB: ISO WKB with the value's SRID in it (when not 0), so
+/// that one decode gives PostGIS everything (`ST_GeomFromEWKB`).
+pub fn to_ewkb(ct: &CircleTree, tol: Option<f64>) -> Result<Vec<u8>> {
+    let wkb = to_wkb(ct, tol)?;
+    Ok(with_srid(wkb, ct.srid))
+}
+
+/// ISO WKB (little endian, 2D Polygon or MultiPolygon) to EWKB with `srid`: the type word gets
+/// the SRID flag and the SRID follows it; nested polygons carry none, as PostGIS writes them.
+fn with_srid(mut wkb: Vec<u8>, srid: i32) -> Vec<u8> {
+    const SRID_FLAG: u32 = 0x2000_0000;
+    if srid == 0 || wkb.len() < 5 || wkb[0] != 1 {
+        return wkb;
+    }
+    let ty = u32::from_le_bytes([wkb[1], wkb[2], wkb[3], wkb[4]]) | SRID_FLAG;
+    wkb[1..5].copy_from_slice(&ty.to_le_bytes());
+    wkb.splice(5..5, srid.to_le_bytes());
+    wkb
+}
+
+/// The rebuilt geometry with true arcs as EWKT, `SRID=n;` first when the SRID is not 0.
+pub fn to_curved_ewkt(ct: &CircleTree) -> String {
+    let wkt = to_curved_wkt(ct);
+    if ct.srid == 0 {
+        wkt
+    } else {
+        format!("SRID={};{wkt}", ct.srid)
+    }
+}
+
 /// The rebuilt geometry with true arcs: `CURVEPOLYGON` or `MULTISURFACE` WKT.
 pub fn to_curved_wkt(ct: &CircleTree) -> String {
     let mut s = String::new();
@@ -92,4 +122,23 @@ pub fn to_curved_wkt(ct: &CircleTree) -> String {
         }
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ewkb_carries_the_srid_once() {
+        let wkb = crate::wkb::write(
+            Kind::MultiPolygon,
+            &[vec![vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]]],
+        );
+        let e = with_srid(wkb.clone(), 32760);
+        assert_eq!(e.len(), wkb.len() + 4);
+        assert_eq!(&e[1..5], &(6u32 | 0x2000_0000).to_le_bytes());
+        assert_eq!(&e[5..9], &32760i32.to_le_bytes());
+        assert_eq!(&e[9..], &wkb[5..]);
+        assert_eq!(with_srid(wkb.clone(), 0), wkb);
+    }
 }

@@ -24,7 +24,7 @@ INSERT INTO stored SELECT 2, ct_encode(ct_decode(ct), 50, 0.4, 100) FROM stored 
 SELECT id, ct_summary(ct)->>'format_version' AS version, ST_IsValid(ct_decode(ct)) AS valid,
        ct_hausdorff(ct_decode(s.ct), (SELECT ct_decode(ct) FROM stored WHERE id = 1)) <= 100 AS within
   FROM stored s ORDER BY id;
--- ct_encode_within (0.3.0) after the update
+-- ct_encode_within (0.3.0) and the single-decode ct_decode (0.4.0) after the update
 SELECT ct_summary(ct_encode_within(ct_decode(ct), 100))->>'format_version' AS version,
        ct_hausdorff(ct_encode_within(ct_decode(ct), 100), ct_decode(ct)) <= 100 AS within
   FROM stored WHERE id = 1;

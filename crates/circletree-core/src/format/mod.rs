@@ -222,6 +222,22 @@ impl CircleTree {
         w.0
     }
 
+    /// Where this value's bytes go: the header (everything before the circles) and, for format
+    /// version 2, the coded stream by kind of symbol (`None` for version 1).
+    pub fn breakdown(&self) -> (usize, Option<v2::Breakdown>) {
+        let total = self.to_bytes().len();
+        if self.version == 1 {
+            let mut w = Writer(Vec::new());
+            v1::write(&mut w, &self.parts, self.cursor());
+            return (total - w.0.len(), None);
+        }
+        let stream = v2::write(&self.parts, self.cursor()).len();
+        (
+            total - stream,
+            Some(v2::breakdown(&self.parts, self.cursor())),
+        )
+    }
+
     /// Where the circles start and the scales the header implies.
     fn cursor(&self) -> Cursor {
         let (start, extent) = match self.bbox {

@@ -7,6 +7,8 @@ use std::str::FromStr;
 /// One real polygon: name, SRID, ST_NPoints, WKB.
 pub struct Sample {
     pub name: String,
+    /// The data set the polygon comes from: `GSHHG`, `LINZ` or `Stats NZ`.
+    pub family: &'static str,
     pub srid: i32,
     pub npoints: usize,
     pub wkb: Vec<u8>,
@@ -44,6 +46,13 @@ pub fn load_file(file: &str, only: &[&str]) -> Vec<Sample> {
         wkb::writer::write_geometry(&mut wkb, &geom, &Default::default()).expect("wkb");
         out.push(Sample {
             name: f[0].to_string(),
+            family: if f[1].starts_with("GSHHG") {
+                "GSHHG"
+            } else if f[1].starts_with("LINZ") {
+                "LINZ"
+            } else {
+                "Stats NZ"
+            },
             srid: f[2].parse().expect("srid"),
             npoints: f[3].parse().expect("npoints"),
             wkb,
