@@ -278,6 +278,9 @@ mod tests {
         let bits = b.counts + b.flags + b.point_deltas + b.circle_deltas + b.radii;
         let stream = write(&parts, cur).len() as f64 * 8.0;
         assert!(b.radii > 0.0 && b.circle_deltas > 0.0 && b.point_deltas > b.circle_deltas);
-        assert!((bits - stream).abs() < 40.0, "{bits} bits estimated, {stream} coded");
+        assert!(
+            (bits - stream).abs() < 40.0,
+            "{bits} bits estimated, {stream} coded"
+        );
     }
 }
