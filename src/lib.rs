@@ -10,80 +10,19 @@ pub mod datatype;
 pub mod error;
 pub mod functions;
 
-extension_sql!(
-    r#"
--- PostGIS-facing wrappers. They are SQL functions so the planner can inline them; PostGIS is
--- resolved through the caller's search_path (PostgreSQL 15 has no @extschema:postgis@).
-CREATE FUNCTION ct_decode(ct circletree) RETURNS geometry
-    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
-    AS $$ SELECT ST_GeomFromEWKB(_ct_decode_ewkb($1, NULL)) $$;
-CREATE FUNCTION ct_decode(ct circletree, arc_tolerance float8) RETURNS geometry
-    LANGUAGE sql IMMUTABLE PARALLEL SAFE
-    AS $$ SELECT ST_GeomFromEWKB(_ct_decode_ewkb($1, $2)) $$;
-CREATE FUNCTION ct_decode_curved(ct circletree) RETURNS geometry
-    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
-    AS $$ SELECT ST_GeomFromEWKT(_ct_decode_curved_ewkt($1)) $$;
-
--- Validity is PostGIS's own (ST_IsValid), so what PostGIS accepts, circletree accepts.
-CREATE FUNCTION ct_encode(geom geometry, min_radius float8, overlap float8 DEFAULT 0.4,
-                          dp_tolerance float8 DEFAULT NULL, max_error float8 DEFAULT NULL)
-    RETURNS circletree LANGUAGE sql IMMUTABLE PARALLEL SAFE
-    AS $$ SELECT _ct_encode_wkb(ST_AsBinary($1), ST_SRID($1),
-            CASE WHEN GeometryType($1) IN ('POLYGON', 'MULTIPOLYGON') AND NOT ST_IsValid($1)
-                 THEN ST_IsValidReason($1) END,
-            $2, $3, $4, $5) $$;
--- The fewest bytes whose ct_decode is valid and within max_error (points only, on the grid that
--- gives the fewest bytes; see docs/ALGORITHM.md).
-CREATE FUNCTION ct_encode_within(geom geometry, max_error float8)
-    RETURNS circletree LANGUAGE sql IMMUTABLE PARALLEL SAFE
-    AS $$ SELECT _ct_encode_within_wkb(ST_AsBinary($1), ST_SRID($1),
-            CASE WHEN GeometryType($1) IN ('POLYGON', 'MULTIPOLYGON') AND NOT ST_IsValid($1)
-                 THEN ST_IsValidReason($1) END,
-            $2) $$;
-
-CREATE FUNCTION ct_storage_ratio(ct circletree, geom geometry) RETURNS float8
-    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
-    AS $$ SELECT pg_column_size($1)::float8 / pg_column_size($2) $$;
-CREATE FUNCTION ct_sliver_error(ct circletree, geom geometry) RETURNS float8
-    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
-    AS $$ SELECT _ct_sliver_error_wkb($1, ST_AsBinary($2)) $$;
-CREATE FUNCTION ct_sliver_ratio(ct circletree, geom geometry) RETURNS float8
-    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
-    AS $$ SELECT _ct_sliver_error_wkb($1, ST_AsBinary($2)) / NULLIF(ST_Area($2), 0) $$;
-CREATE FUNCTION ct_hausdorff(ct circletree, geom geometry) RETURNS float8
-    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
-    AS $$ SELECT _ct_hausdorff_wkb($1, ST_AsBinary($2)) $$;
--- The same measure between any two (Multi)Polygons, to compare other simplifications fairly.
-CREATE FUNCTION ct_hausdorff(a geometry, b geometry) RETURNS float8
-    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
-    AS $$ SELECT _ct_hausdorff_wkb2(ST_AsBinary($1), ST_AsBinary($2)) $$;
-
--- The paper's experiment (figures 11-14) on one polygon: every combination of the three arrays.
-CREATE FUNCTION ct_sweep(geom geometry,
-        min_radius float8[] DEFAULT '{1,5,10,15,25}',
-        overlap float8[] DEFAULT '{0,0.1,0.4,0.6,0.9}',
-        dp_tolerance float8[] DEFAULT '{NULL,1,5,10,15,25}')
-    RETURNS TABLE(min_radius float8, overlap float8, dp_tolerance float8, circles int, internal int,
-                  external int, zero int, added_by_repair int, bytes int, storage_ratio float8,
-                  sliver_ratio float8, hausdorff float8, valid bool)
-    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
-    AS $$
-    SELECT m, o, d, (s->>'circles')::int, (s->>'internal')::int, (s->>'external')::int,
-           (s->>'zero')::int, (s->>'added_by_repair')::int, (s->>'bytes')::int,
-           (s->>'storage_ratio')::float8, ct_sliver_ratio(ct, $1), ct_hausdorff(ct, $1),
-           ST_IsValid(ct_decode(ct))
-      FROM unnest($2) m, unnest($3) o, unnest($4) d,
-           LATERAL (SELECT ct_encode($1, m, o, d) AS ct) e,
-           LATERAL (SELECT ct_summary(e.ct) AS s) x
-     ORDER BY d NULLS FIRST, o, m
-    $$;
-"#,
+extension_sql_file!(
+    "../sql/postgis_wrappers.sql",
     name = "postgis_wrappers",
     requires = [
         "circletree_binary_io",
         functions::_ct_decode_ewkb,
         functions::_ct_decode_curved_ewkt,
+        functions::_ct_encode_wkb,
         functions::_ct_encode_within_wkb,
+        functions::_ct_sliver_error_wkb,
+        functions::_ct_hausdorff_wkb,
+        functions::_ct_hausdorff_wkb2,
+        functions::ct_summary,
         functions::ct_srid
     ]
 );

@@ -1,0 +1,81 @@
+-- PostGIS-facing wrappers (loaded by src/lib.rs with extension_sql_file!, and repeated as they are in
+-- the upgrade script that introduced this form, sql/circletree--0.3.0--0.4.0.sql).
+--
+-- They are SQL functions so the planner can inline them. Every function they call is schema-qualified,
+-- so a schema ahead of PostGIS's in a caller's search_path cannot change what they compute (the
+-- CVE-2018-1058 class of bug): PostGIS's own functions through the schema PostGIS is installed in,
+-- read here at install time (PostgreSQL 15 has no @extschema:postgis@), circletree's through
+-- @extschema@, the built-ins through pg_catalog. The types in the signatures are resolved once, here.
+DO $install$
+DECLARE
+  pg text := (SELECT n.nspname FROM pg_catalog.pg_extension e
+                JOIN pg_catalog.pg_namespace n ON n.oid = e.extnamespace
+               WHERE e.extname = 'postgis');
+BEGIN
+  EXECUTE pg_catalog.format($sql$
+CREATE OR REPLACE FUNCTION @extschema@.ct_decode(ct @extschema@.circletree) RETURNS %1$I.geometry
+    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
+    AS $$ SELECT %1$I.ST_GeomFromEWKB(@extschema@._ct_decode_ewkb($1, NULL)) $$;
+CREATE OR REPLACE FUNCTION @extschema@.ct_decode(ct @extschema@.circletree, arc_tolerance float8) RETURNS %1$I.geometry
+    LANGUAGE sql IMMUTABLE PARALLEL SAFE
+    AS $$ SELECT %1$I.ST_GeomFromEWKB(@extschema@._ct_decode_ewkb($1, $2)) $$;
+CREATE OR REPLACE FUNCTION @extschema@.ct_decode_curved(ct @extschema@.circletree) RETURNS %1$I.geometry
+    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
+    AS $$ SELECT %1$I.ST_GeomFromEWKT(@extschema@._ct_decode_curved_ewkt($1)) $$;
+
+-- Validity is PostGIS's own (ST_IsValid), so what PostGIS accepts, circletree accepts.
+CREATE OR REPLACE FUNCTION @extschema@.ct_encode(geom %1$I.geometry, min_radius float8, overlap float8 DEFAULT 0.4,
+                          dp_tolerance float8 DEFAULT NULL, max_error float8 DEFAULT NULL)
+    RETURNS @extschema@.circletree LANGUAGE sql IMMUTABLE PARALLEL SAFE
+    AS $$ SELECT @extschema@._ct_encode_wkb(%1$I.ST_AsBinary($1), %1$I.ST_SRID($1),
+            CASE WHEN %1$I.GeometryType($1) IN ('POLYGON', 'MULTIPOLYGON') AND NOT %1$I.ST_IsValid($1)
+                 THEN %1$I.ST_IsValidReason($1) END,
+            $2, $3, $4, $5) $$;
+-- The fewest bytes whose ct_decode is valid and within max_error (points only, on the grid that
+-- gives the fewest bytes; see docs/ALGORITHM.md).
+CREATE OR REPLACE FUNCTION @extschema@.ct_encode_within(geom %1$I.geometry, max_error float8)
+    RETURNS @extschema@.circletree LANGUAGE sql IMMUTABLE PARALLEL SAFE
+    AS $$ SELECT @extschema@._ct_encode_within_wkb(%1$I.ST_AsBinary($1), %1$I.ST_SRID($1),
+            CASE WHEN %1$I.GeometryType($1) IN ('POLYGON', 'MULTIPOLYGON') AND NOT %1$I.ST_IsValid($1)
+                 THEN %1$I.ST_IsValidReason($1) END,
+            $2) $$;
+
+CREATE OR REPLACE FUNCTION @extschema@.ct_storage_ratio(ct @extschema@.circletree, geom %1$I.geometry) RETURNS float8
+    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
+    AS $$ SELECT pg_catalog.pg_column_size($1)::float8 / pg_catalog.pg_column_size($2) $$;
+CREATE OR REPLACE FUNCTION @extschema@.ct_sliver_error(ct @extschema@.circletree, geom %1$I.geometry) RETURNS float8
+    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
+    AS $$ SELECT @extschema@._ct_sliver_error_wkb($1, %1$I.ST_AsBinary($2)) $$;
+CREATE OR REPLACE FUNCTION @extschema@.ct_sliver_ratio(ct @extschema@.circletree, geom %1$I.geometry) RETURNS float8
+    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
+    AS $$ SELECT @extschema@._ct_sliver_error_wkb($1, %1$I.ST_AsBinary($2)) / NULLIF(%1$I.ST_Area($2), 0) $$;
+CREATE OR REPLACE FUNCTION @extschema@.ct_hausdorff(ct @extschema@.circletree, geom %1$I.geometry) RETURNS float8
+    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
+    AS $$ SELECT @extschema@._ct_hausdorff_wkb($1, %1$I.ST_AsBinary($2)) $$;
+-- The same measure between any two (Multi)Polygons, to compare other simplifications fairly.
+CREATE OR REPLACE FUNCTION @extschema@.ct_hausdorff(a %1$I.geometry, b %1$I.geometry) RETURNS float8
+    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
+    AS $$ SELECT @extschema@._ct_hausdorff_wkb2(%1$I.ST_AsBinary($1), %1$I.ST_AsBinary($2)) $$;
+
+-- The paper's experiment (figures 11-14) on one polygon: every combination of the three arrays.
+CREATE OR REPLACE FUNCTION @extschema@.ct_sweep(geom %1$I.geometry,
+        min_radius float8[] DEFAULT '{1,5,10,15,25}',
+        overlap float8[] DEFAULT '{0,0.1,0.4,0.6,0.9}',
+        dp_tolerance float8[] DEFAULT '{NULL,1,5,10,15,25}')
+    RETURNS TABLE(min_radius float8, overlap float8, dp_tolerance float8, circles int, internal int,
+                  external int, zero int, added_by_repair int, bytes int, storage_ratio float8,
+                  sliver_ratio float8, hausdorff float8, valid bool)
+    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
+    AS $$
+    SELECT m, o, d, (s->>'circles')::int, (s->>'internal')::int, (s->>'external')::int,
+           (s->>'zero')::int, (s->>'added_by_repair')::int, (s->>'bytes')::int,
+           (s->>'storage_ratio')::float8, @extschema@.ct_sliver_ratio(ct, $1), @extschema@.ct_hausdorff(ct, $1),
+           %1$I.ST_IsValid(@extschema@.ct_decode(ct))
+      FROM pg_catalog.unnest($2) m, pg_catalog.unnest($3) o, pg_catalog.unnest($4) d,
+           LATERAL (SELECT @extschema@.ct_encode($1, m, o, d) AS ct) e,
+           LATERAL (SELECT @extschema@.ct_summary(e.ct) AS s) x
+     ORDER BY d NULLS FIRST, o, m
+    $$;
+$sql$, pg);
+END
+$install$;
