@@ -62,7 +62,7 @@ SELECT c.dataset, c.family, c.name, c.npoints, pg_column_size(c.geom), octet_len
   FROM bench_simp s JOIN coast c USING (name);
 
 -- The paper's experiment (figures 11 to 14) on Kapiti Island: all 150 combinations.
-\echo == the paper's experiment on kapiti_island_linz (150 encodings)
+\echo == the experiment of the paper on kapiti_island_linz (150 encodings)
 CREATE TABLE bench_sweep AS
 SELECT * FROM ct_sweep((SELECT geom FROM coast WHERE name = 'kapiti_island_linz'));
 

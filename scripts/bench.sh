@@ -18,19 +18,7 @@ cargo build --release -q -p circletree-core --example scaling --example bytes_br
 
 out=$(mktemp -d)
 db=circletree_bench
-psql -X -q -d postgres -c "DROP DATABASE IF EXISTS $db" -c "CREATE DATABASE $db"
-psql -X -q -v ON_ERROR_STOP=1 -d "$db" <<'SQL'
-SET client_min_messages = warning;
-CREATE EXTENSION circletree CASCADE;
-CREATE TABLE poly(name text, source text, srid int, npoints int, wkt text);
-\copy poly FROM PROGRAM 'gzip -dc tests/data/polygons.tsv.gz' WITH (FORMAT csv, DELIMITER E'\t', HEADER true, QUOTE E'\x01')
-CREATE TABLE held(name text, source text, srid int, npoints int, wkt text);
-\copy held FROM PROGRAM 'gzip -dc tests/data/holdout.tsv.gz' WITH (FORMAT csv, DELIMITER E'\t', HEADER true, QUOTE E'\x01')
-CREATE TABLE coast AS
-SELECT p.dataset, CASE WHEN p.source LIKE 'GSHHG%' THEN 'GSHHG' WHEN p.source LIKE 'LINZ%' THEN 'LINZ' ELSE 'Stats NZ' END AS family,
-       p.name, p.source, p.npoints, ST_GeomFromText(p.wkt, p.srid) AS geom
-  FROM (SELECT 'public' AS dataset, * FROM poly UNION ALL SELECT 'holdout', * FROM held) p;
-SQL
+bash scripts/load.sh "$db" public=tests/data/polygons.tsv.gz holdout=tests/data/holdout.tsv.gz
 start=$(date +%s)
 psql -X -q -v ON_ERROR_STOP=1 -d "$db" -f bench/benchmarks.sql
 for t in bench_rows bench_sweep bench_speed; do

@@ -8,6 +8,7 @@ import os
 import sys
 
 OUT = sys.argv[1]
+csv.field_size_limit(sys.maxsize)  # TWKB values as hex
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
@@ -244,6 +245,9 @@ w("`ct_decode` reads a stored datum (`from_stored_bytes`) and rebuilt to WKB at 
 w("*parse* is the reading alone. Milliseconds for the whole set, mean of 20 runs.")
 w("")
 w(decode_md)
+w("")
+with open(os.path.join(ROOT, "docs", "where_the_bytes_go.md")) as f:
+    md.append(f.read().rstrip("\n"))
 w("")
 
 # the paper's experiment

@@ -30,7 +30,7 @@ out=$(mktemp -d)
 chmod 755 "$out"
 tests=$(cd tests/pg_regress/sql && ls *.sql | sed 's/\.sql$//' | grep -v '^setup$' | sort | tr '\n' ' ')
 if ! "$($PG_CONFIG --pkglibdir)/pgxs/src/test/regress/pg_regress" \
-      --bindir=/usr/lib/postgresql/15/bin --host=/var/run/postgresql --port=5432 \
+      --bindir="$($PG_CONFIG --bindir)" --host=/var/run/postgresql --port=5432 \
       --dbname=circletree_regress --inputdir=tests/pg_regress --outputdir="$out" \
       setup $tests; then
   cat "$out/regression.diffs" 2>/dev/null | head -200

@@ -6,6 +6,11 @@
 -- CVE-2018-1058 class of bug): PostGIS's own functions through the schema PostGIS is installed in,
 -- read here at install time (PostgreSQL 15 has no @extschema:postgis@), circletree's through
 -- @extschema@, the built-ins through pg_catalog. The types in the signatures are resolved once, here.
+-- The envelope from the header alone: the C function takes the circletree datum as its bytes.
+CREATE OR REPLACE FUNCTION @extschema@._ct_envelope_ewkb(ct @extschema@.circletree) RETURNS bytea
+    IMMUTABLE STRICT PARALLEL SAFE
+    LANGUAGE c AS 'MODULE_PATHNAME', '_ct_envelope_ewkb_wrapper';
+
 DO $install$
 DECLARE
   pg text := (SELECT n.nspname FROM pg_catalog.pg_extension e
@@ -22,6 +27,12 @@ CREATE OR REPLACE FUNCTION @extschema@.ct_decode(ct @extschema@.circletree, arc_
 CREATE OR REPLACE FUNCTION @extschema@.ct_decode_curved(ct @extschema@.circletree) RETURNS %1$I.geometry
     LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
     AS $$ SELECT %1$I.ST_GeomFromEWKT(@extschema@._ct_decode_curved_ewkt($1)) $$;
+
+-- A box holding the original and ct_decode(ct), from the header alone (cheap: no circle is decoded),
+-- for an expression index: CREATE INDEX ... USING gist (ct_envelope(ct)).
+CREATE OR REPLACE FUNCTION @extschema@.ct_envelope(ct @extschema@.circletree) RETURNS %1$I.geometry
+    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
+    AS $$ SELECT %1$I.ST_GeomFromEWKB(@extschema@._ct_envelope_ewkb($1)) $$;
 
 -- Validity is PostGIS's own (ST_IsValid), so what PostGIS accepts, circletree accepts.
 CREATE OR REPLACE FUNCTION @extschema@.ct_encode(geom %1$I.geometry, min_radius float8, overlap float8 DEFAULT 0.4,

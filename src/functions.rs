@@ -117,6 +117,15 @@ fn _ct_decode_ewkb(ct: Option<CircleTree>, arc_tolerance: Option<f64>) -> Option
     Some(decode::to_ewkb(&ct.value, arc_tolerance).or_raise())
 }
 
+/// The envelope (a box holding the original and the rebuilt polygon) as EWKB, read from the
+/// header alone: the argument is a circletree datum taken as its bytes (a plain varlena, detoasted),
+/// so no circle is decoded.
+// Declared in sql/postgis_wrappers.sql with a circletree argument (after the type exists).
+#[pg_extern(sql = false)]
+fn _ct_envelope_ewkb(ct: &[u8]) -> Vec<u8> {
+    decode::envelope_ewkb(ct).or_raise()
+}
+
 /// The rebuilt boundary with true arcs, as EWKT (the SRID inside).
 #[pg_extern(immutable, strict, parallel_safe)]
 fn _ct_decode_curved_ewkt(ct: CircleTree) -> String {

@@ -27,6 +27,9 @@ extension_sql_file!(
     ]
 );
 
+// Catalog documentation of every object (COMMENT ON), once everything exists.
+extension_sql_file!("../sql/comments.sql", name = "comments", finalize);
+
 /// `#[pg_test]`s: what needs a backend (datum round trips, SQLSTATEs). The SQL contract itself
 /// is covered by the pg_regress files in tests/pg_regress.
 #[cfg(any(test, feature = "pg_test"))]

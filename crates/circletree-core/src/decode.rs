@@ -78,6 +78,16 @@ fn with_srid(mut wkb: Vec<u8>, srid: i32) -> Vec<u8> {
     wkb
 }
 
+/// The envelope of a stored value as EWKB, from its header alone ([`CircleTree::envelope`]): a
+/// Polygon box holding the original and the rebuilt geometry, SRID kept; an empty Polygon for an
+/// empty value.
+pub fn envelope_ewkb(bytes: &[u8]) -> Result<Vec<u8>> {
+    let (srid, bbox) = CircleTree::envelope(bytes)?;
+    let ring = bbox.map(|[x0, y0, x1, y1]| vec![vec![[x0, y0], [x1, y0], [x1, y1], [x0, y1]]]);
+    let wkb = crate::wkb::write(Kind::Polygon, &ring.into_iter().collect::<Vec<_>>());
+    Ok(with_srid(wkb, srid))
+}
+
 /// The rebuilt geometry with true arcs as EWKT, `SRID=n;` first when the SRID is not 0.
 pub fn to_curved_ewkt(ct: &CircleTree) -> String {
     let wkt = to_curved_wkt(ct);

@@ -16,3 +16,12 @@ SELECT count(*) = ct_ncircles((SELECT ct FROM k)) AS rows_match, min(seq) AS fir
   FROM ct_circles((SELECT ct FROM k));
 -- NULL in, NULL out
 SELECT ct_ncircles(NULL), ct_srid(NULL), ct_summary(NULL) IS NULL AS summary_null, count(*) FROM ct_circles(NULL);
+-- every function, the type and the operators of the extension are documented in the catalog
+-- (\df+ ct_* and \dT+ circletree explain themselves)
+SELECT count(*) AS undocumented
+  FROM pg_depend d
+ WHERE d.refobjid = (SELECT oid FROM pg_extension WHERE extname = 'circletree') AND d.deptype = 'e'
+   AND d.classid IN ('pg_proc'::regclass, 'pg_type'::regclass, 'pg_operator'::regclass)
+   AND obj_description(d.objid, d.classid::regclass::name) IS NULL
+   AND NOT (d.classid = 'pg_type'::regclass AND d.objid = (SELECT typarray FROM pg_type WHERE typname = 'circletree'));
+SELECT obj_description('ct_encode_within(geometry, float8)'::regprocedure, 'pg_proc') AS ct_encode_within;

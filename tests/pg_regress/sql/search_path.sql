@@ -9,7 +9,7 @@ CREATE FUNCTION evil.st_asbinary(geometry) RETURNS bytea LANGUAGE sql
 CREATE FUNCTION evil.st_geomfromewkb(bytea) RETURNS geometry LANGUAGE sql
     AS $$ SELECT 'POINT(0 0)'::geometry $$;
 CREATE FUNCTION evil.st_area(geometry) RETURNS float8 LANGUAGE sql AS $$ SELECT 1::float8 $$;
-CREATE FUNCTION evil.pg_column_size("any") RETURNS int LANGUAGE sql AS $$ SELECT 1 $$;
+CREATE FUNCTION evil.pg_column_size(circletree) RETURNS int LANGUAGE sql AS $$ SELECT 1 $$;
 CREATE TABLE sp AS
 SELECT name, geom, ct_encode(geom, 5, 0.4, 10) AS ct FROM coast WHERE name IN ('lake_tahoe', 'kapiti_island_linz');
 CREATE TABLE sp_expected AS
@@ -18,7 +18,8 @@ SELECT name, ct::bytea AS bytes, ST_AsBinary(ct_decode(ct)) AS decoded, ct_slive
   FROM sp;
 SET search_path = evil, public, pg_catalog;
 -- what the evil functions would give if called
-SELECT st_srid('POINT(1 1)'::geometry) AS evil_srid, st_area('POINT(1 1)'::geometry) AS evil_area;
+SELECT st_srid('POINT(1 1)'::geometry) AS evil_srid, st_area('POINT(1 1)'::geometry) AS evil_area,
+       pg_column_size(ct) AS evil_size FROM sp LIMIT 1;
 -- every wrapper gives what it gave before
 SELECT s.name,
        ct_encode(s.geom, 5, 0.4, 10)::bytea = e.bytes AS same_encoding,

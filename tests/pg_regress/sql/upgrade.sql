@@ -29,10 +29,11 @@ SELECT ct_summary(ct_encode_within(ct_decode(ct), 100))->>'format_version' AS ve
        ct_hausdorff(ct_encode_within(ct_decode(ct), 100), ct_decode(ct)) <= 100 AS within
   FROM stored WHERE id = 1;
 -- The updated extension has the objects of a fresh install, with the same function bodies,
--- volatility, strictness and parallel safety (the fresh one is circletree_regress's).
+-- volatility, strictness, parallel safety and catalog comments (the fresh one is circletree_regress's).
 SELECT md5(string_agg(o.descr, E'\n' ORDER BY o.descr)) AS objects
   FROM (SELECT pg_describe_object(d.classid, d.objid, 0) || ' ' ||
-               coalesce(p.prosrc || ' ' || p.provolatile::text || p.proisstrict::text || p.proparallel::text, '') AS descr
+               coalesce(p.prosrc || ' ' || p.provolatile::text || p.proisstrict::text || p.proparallel::text, '') || ' ' ||
+               coalesce(obj_description(d.objid, d.classid::regclass::name), '') AS descr
           FROM pg_depend d
           LEFT JOIN pg_proc p ON d.classid = 'pg_proc'::regclass AND p.oid = d.objid
          WHERE d.refclassid = 'pg_extension'::regclass AND d.deptype = 'e'
@@ -40,7 +41,8 @@ SELECT md5(string_agg(o.descr, E'\n' ORDER BY o.descr)) AS objects
 \c circletree_regress
 SELECT md5(string_agg(o.descr, E'\n' ORDER BY o.descr)) = :'updated_objects' AS same_as_a_fresh_install
   FROM (SELECT pg_describe_object(d.classid, d.objid, 0) || ' ' ||
-               coalesce(p.prosrc || ' ' || p.provolatile::text || p.proisstrict::text || p.proparallel::text, '') AS descr
+               coalesce(p.prosrc || ' ' || p.provolatile::text || p.proisstrict::text || p.proparallel::text, '') || ' ' ||
+               coalesce(obj_description(d.objid, d.classid::regclass::name), '') AS descr
           FROM pg_depend d
           LEFT JOIN pg_proc p ON d.classid = 'pg_proc'::regclass AND p.oid = d.objid
          WHERE d.refclassid = 'pg_extension'::regclass AND d.deptype = 'e'

@@ -108,41 +108,14 @@ impl CircleTree {
     /// Check every invariant a stored value must satisfy.
     pub fn validate(&self) -> Result<()> {
         let bad = |m: String| Err(Error::Corrupt(m));
-        if self.grid.mantissa <= 0 || !(-12..=12).contains(&self.grid.exp) {
-            return bad(format!(
-                "grid {} is not a positive step between 1e-12 and 1e12",
-                self.grid
-            ));
-        }
-        let p = &self.params;
-        if p.min_radius.mantissa <= 0 {
-            return bad(format!("min_radius {} is not positive", p.min_radius));
-        }
-        let ov = p.overlap.to_f64();
-        if !(0.0..=1.0).contains(&ov) {
-            return bad(format!("overlap {} is outside [0, 1]", p.overlap));
-        }
-        if p.dp_tolerance.is_some_and(|d| d.mantissa <= 0) {
-            return bad("dp_tolerance is not positive".into());
-        }
-        if p.max_error.mantissa <= 0 {
-            return bad(format!("max_error {} is not positive", p.max_error));
-        }
+        self.validate_header()?;
         if self.kind == Kind::Polygon && self.parts.len() > 1 {
             return bad(format!("a Polygon with {} parts", self.parts.len()));
         }
         match (self.parts.is_empty(), self.bbox) {
             (true, Some(_)) => return bad("an empty value with a bounding box".into()),
             (false, None) => return bad("a bounding box is missing".into()),
-            (false, Some(b)) if b[0] > b[2] || b[1] > b[3] => {
-                return bad("the bounding box is inverted".into())
-            }
             _ => {}
-        }
-        if let Some(b) = self.bbox {
-            if b.iter().any(|v| v.abs() > MAX_STEPS) {
-                return bad("the bounding box is out of range".into());
-            }
         }
         for (pi, part) in self.parts.iter().enumerate() {
             if part.is_empty() {
@@ -175,6 +148,40 @@ impl CircleTree {
                 self.repaired,
                 self.ncircles()
             ));
+        }
+        Ok(())
+    }
+
+    /// The invariants of the header alone: grid, parameters and bounding box in range.
+    fn validate_header(&self) -> Result<()> {
+        let bad = |m: String| Err(Error::Corrupt(m));
+        if self.grid.mantissa <= 0 || !(-12..=12).contains(&self.grid.exp) {
+            return bad(format!(
+                "grid {} is not a positive step between 1e-12 and 1e12",
+                self.grid
+            ));
+        }
+        let p = &self.params;
+        if p.min_radius.mantissa <= 0 {
+            return bad(format!("min_radius {} is not positive", p.min_radius));
+        }
+        let ov = p.overlap.to_f64();
+        if !(0.0..=1.0).contains(&ov) {
+            return bad(format!("overlap {} is outside [0, 1]", p.overlap));
+        }
+        if p.dp_tolerance.is_some_and(|d| d.mantissa <= 0) {
+            return bad("dp_tolerance is not positive".into());
+        }
+        if p.max_error.mantissa <= 0 {
+            return bad(format!("max_error {} is not positive", p.max_error));
+        }
+        if let Some(b) = self.bbox {
+            if b[0] > b[2] || b[1] > b[3] {
+                return bad("the bounding box is inverted".into());
+            }
+            if b.iter().any(|v| v.abs() > MAX_STEPS) {
+                return bad("the bounding box is out of range".into());
+            }
         }
         Ok(())
     }
@@ -274,8 +281,9 @@ impl CircleTree {
         Self::read(bytes, false)
     }
 
-    fn read(bytes: &[u8], canonical: bool) -> Result<CircleTree> {
-        let mut r = Reader { buf: bytes };
+    /// The header alone (everything before the circles): the value with no parts, and the number
+    /// of parts its circles hold.
+    fn read_header<'a>(r: &mut Reader<'a>) -> Result<(CircleTree, usize)> {
         let version = r.byte("the format version")?;
         if !VERSIONS.contains(&version) {
             return Err(Error::Corrupt(format!(
@@ -313,7 +321,7 @@ impl CircleTree {
             };
             bbox = Some([xmin, ymin, xmax, ymax]);
         }
-        let mut ct = CircleTree {
+        let ct = CircleTree {
             version,
             srid,
             kind,
@@ -330,6 +338,36 @@ impl CircleTree {
             bbox,
             parts: vec![],
         };
+        Ok((ct, nparts))
+    }
+
+    /// A box holding both the original polygon and everything [`crate::decode`] rebuilds from
+    /// these bytes, read from the header alone (no circle is decoded): the stored bounding box of
+    /// the original, widened by the value's `max_error` (the rebuilt boundary lies within it of
+    /// the original's). `None` for an empty value.
+    pub fn envelope(bytes: &[u8]) -> Result<(i32, Option<[f64; 4]>)> {
+        let mut r = Reader { buf: bytes };
+        let (ct, _) = Self::read_header(&mut r)?;
+        ct.validate_header()?;
+        let g = crate::grid::Grid::new(ct.grid);
+        let m = ct.params.max_error.to_f64();
+        Ok((
+            ct.srid,
+            ct.bbox.map(|b| {
+                [
+                    g.coord(b[0]) - m,
+                    g.coord(b[1]) - m,
+                    g.coord(b[2]) + m,
+                    g.coord(b[3]) + m,
+                ]
+            }),
+        ))
+    }
+
+    fn read(bytes: &[u8], canonical: bool) -> Result<CircleTree> {
+        let mut r = Reader { buf: bytes };
+        let (mut ct, nparts) = Self::read_header(&mut r)?;
+        let version = ct.version;
         let cur = ct.cursor();
         ct.parts = if version == 1 {
             v1::read(&mut r, nparts, cur)?
@@ -486,6 +524,23 @@ mod tests {
             CircleTree::from_bytes(&[]),
             Err(Error::Corrupt(_))
         ));
+    }
+
+    #[test]
+    fn envelope_from_the_header_alone() {
+        for v in VERSIONS {
+            let ct = sample_v(v);
+            let mut b = ct.to_bytes();
+            let (srid, bbox) = CircleTree::envelope(&b).unwrap();
+            assert_eq!(srid, 32760);
+            // grid 0.5, max_error 10: the stored box widened by 10
+            assert_eq!(bbox, Some([499_990.0, 5_999_990.0, 500_210.0, 6_000_160.0]));
+            // the circles are not read: a value cut after its header still has its envelope
+            b.truncate(b.len() - 3);
+            assert!(CircleTree::from_bytes(&b).is_err());
+            assert_eq!(CircleTree::envelope(&b).unwrap().1, bbox);
+        }
+        assert!(CircleTree::envelope(&[2, 3]).is_err());
     }
 
     #[test]

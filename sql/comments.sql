@@ -1,0 +1,80 @@
+-- Catalog documentation: what \dT+ circletree and \df+ ct_* show. Loaded last by src/lib.rs
+-- (extension_sql_file!), and repeated in sql/circletree--0.3.0--0.4.0.sql, which introduced it.
+COMMENT ON TYPE @extschema@.circletree IS
+  'A polygon stored as ordered circles (x, y, ±r), rebuilt from tangents and arcs; valid and within its recorded max_error (Hausdorff) of the original. See docs/FORMAT.md.';
+COMMENT ON FUNCTION @extschema@.ct_encode(geometry, float8, float8, float8, float8) IS
+  'ct_encode(geom, min_radius, overlap DEFAULT 0.4, dp_tolerance DEFAULT NULL, max_error DEFAULT NULL): the paper''s circles (medial circles of at least min_radius, overlapping by at most overlap, Douglas-Peucker points at dp_tolerance), repaired until ct_decode is valid and within max_error (NULL: greatest(min_radius, dp_tolerance)). Lengths in the SRID''s units.';
+COMMENT ON FUNCTION @extschema@.ct_encode_within(geometry, float8) IS
+  'ct_encode_within(geom, max_error): the fewest bytes whose ct_decode is valid and within max_error (continuous Hausdorff, in the SRID''s units).';
+COMMENT ON FUNCTION @extschema@.ct_decode(@extschema@.circletree) IS
+  'ct_decode(ct): the rebuilt POLYGON or MULTIPOLYGON, SRID kept, arcs stroked to the value''s grid step.';
+COMMENT ON FUNCTION @extschema@.ct_decode(@extschema@.circletree, float8) IS
+  'ct_decode(ct, arc_tolerance): the rebuilt polygon with arcs stroked so no chord lies farther than arc_tolerance from its arc (NULL: the grid step; validity is guaranteed up to the grid step).';
+COMMENT ON FUNCTION @extschema@.ct_decode_curved(@extschema@.circletree) IS
+  'ct_decode_curved(ct): the rebuilt CURVEPOLYGON or MULTISURFACE with true circular arcs, SRID kept.';
+COMMENT ON FUNCTION @extschema@.ct_envelope(@extschema@.circletree) IS
+  'ct_envelope(ct): a box holding both the original and ct_decode(ct) (the stored bounding box widened by max_error), read from the header without decoding a circle: index it with CREATE INDEX ... USING gist (ct_envelope(ct)).';
+COMMENT ON FUNCTION @extschema@._ct_envelope_ewkb(@extschema@.circletree) IS
+  'Internal: ct_envelope as EWKB, from the header alone.';
+COMMENT ON FUNCTION @extschema@.ct_circles(@extschema@.circletree) IS
+  'ct_circles(ct): the stored circles in boundary order: part, ring, seq (1-based), centre x, y and signed radius r (> 0 inside, < 0 outside, 0 a boundary point).';
+COMMENT ON FUNCTION @extschema@.ct_ncircles(@extschema@.circletree) IS
+  'ct_ncircles(ct): number of stored circles in all rings (a repeated circle counts each time).';
+COMMENT ON FUNCTION @extschema@.ct_srid(@extschema@.circletree) IS
+  'ct_srid(ct): the SRID the value was encoded with (read from its header).';
+COMMENT ON FUNCTION @extschema@.ct_memsize(@extschema@.circletree) IS
+  'ct_memsize(ct): bytes of the value in memory, varlena header included (as ST_MemSize).';
+COMMENT ON FUNCTION @extschema@.ct_summary(@extschema@.circletree) IS
+  'ct_summary(ct): everything about a value as jsonb: format version, SRID, kind, parts, rings, circles by kind, grid, bytes, original vertices and WKB bytes, parameters.';
+COMMENT ON FUNCTION @extschema@.ct_storage_ratio(@extschema@.circletree) IS
+  'ct_storage_ratio(ct): ct_memsize over the WKB bytes of the original (recorded at encode time).';
+COMMENT ON FUNCTION @extschema@.ct_storage_ratio(@extschema@.circletree, geometry) IS
+  'ct_storage_ratio(ct, geom): pg_column_size(ct) over pg_column_size(geom).';
+COMMENT ON FUNCTION @extschema@.ct_sliver_error(@extschema@.circletree, geometry) IS
+  'ct_sliver_error(ct, geom): area of the symmetric difference between ct_decode(ct) and geom (the SRID''s units squared).';
+COMMENT ON FUNCTION @extschema@.ct_sliver_ratio(@extschema@.circletree, geometry) IS
+  'ct_sliver_ratio(ct, geom): ct_sliver_error over ST_Area(geom).';
+COMMENT ON FUNCTION @extschema@.ct_hausdorff(@extschema@.circletree, geometry) IS
+  'ct_hausdorff(ct, geom): continuous Hausdorff distance between the boundaries of the rebuilt polygon (true arcs) and geom: whole segments, not only vertices.';
+COMMENT ON FUNCTION @extschema@.ct_hausdorff(geometry, geometry) IS
+  'ct_hausdorff(a, b): the same continuous Hausdorff distance between the boundaries of any two (Multi)Polygons, e.g. to measure ST_Simplify''s result the way circletree is measured.';
+COMMENT ON FUNCTION @extschema@.ct_sweep(geometry, float8[], float8[], float8[]) IS
+  'ct_sweep(geom, min_radius[], overlap[], dp_tolerance[]): the paper''s experiment: one ct_encode per combination, with circles by kind, bytes, storage ratio, sliver ratio, Hausdorff distance and validity.';
+COMMENT ON FUNCTION @extschema@._ct_encode_wkb(bytea, int, text, float8, float8, float8, float8) IS
+  'Internal: ct_encode on WKB (called by ct_encode).';
+COMMENT ON FUNCTION @extschema@._ct_encode_within_wkb(bytea, int, text, float8) IS
+  'Internal: ct_encode_within on WKB (called by ct_encode_within).';
+COMMENT ON FUNCTION @extschema@._ct_decode_ewkb(@extschema@.circletree, float8) IS
+  'Internal: the rebuilt polygon as EWKB (called by ct_decode).';
+COMMENT ON FUNCTION @extschema@._ct_decode_curved_ewkt(@extschema@.circletree) IS
+  'Internal: the rebuilt polygon with true arcs as EWKT (called by ct_decode_curved).';
+COMMENT ON FUNCTION @extschema@._ct_decode_wkb(@extschema@.circletree, float8) IS
+  'Internal, kept for databases not yet updated from 0.3.0: the rebuilt polygon as WKB.';
+COMMENT ON FUNCTION @extschema@._ct_decode_curved_wkt(@extschema@.circletree) IS
+  'Internal, kept for databases not yet updated from 0.3.0: the rebuilt polygon with true arcs as WKT.';
+COMMENT ON FUNCTION @extschema@._ct_sliver_error_wkb(@extschema@.circletree, bytea) IS
+  'Internal: ct_sliver_error against WKB.';
+COMMENT ON FUNCTION @extschema@._ct_hausdorff_wkb(@extschema@.circletree, bytea) IS
+  'Internal: ct_hausdorff against WKB.';
+COMMENT ON FUNCTION @extschema@._ct_hausdorff_wkb2(bytea, bytea) IS
+  'Internal: ct_hausdorff between two WKB polygons.';
+COMMENT ON FUNCTION @extschema@.circletree_in(cstring) IS
+  'Text input: SRID=n;CIRCLETREE(...) as circletree::text prints it (docs/FORMAT.md).';
+COMMENT ON FUNCTION @extschema@.circletree_out(@extschema@.circletree) IS
+  'Text output: every header field and circle, exact (reads back to the same bytes).';
+COMMENT ON FUNCTION @extschema@.circletree_recv(internal) IS
+  'Binary input (COPY BINARY, binary protocol): the stored bytes, fully checked.';
+COMMENT ON FUNCTION @extschema@.circletree_send(@extschema@.circletree) IS
+  'Binary output: the stored bytes.';
+COMMENT ON FUNCTION @extschema@.circletree_eq(@extschema@.circletree, @extschema@.circletree) IS
+  'Byte equality of two values.';
+COMMENT ON FUNCTION @extschema@.circletree_ne(@extschema@.circletree, @extschema@.circletree) IS
+  'Byte inequality of two values.';
+COMMENT ON FUNCTION @extschema@.circletree_to_bytea(@extschema@.circletree) IS
+  'The stored bytes as bytea (circletree::bytea).';
+COMMENT ON FUNCTION @extschema@.circletree_from_bytea(bytea) IS
+  'bytea::circletree: stored bytes of any format version, fully checked (22P03 when corrupt).';
+COMMENT ON OPERATOR @extschema@.= (@extschema@.circletree, @extschema@.circletree) IS
+  'Byte equality of two values.';
+COMMENT ON OPERATOR @extschema@.<> (@extschema@.circletree, @extschema@.circletree) IS
+  'Byte inequality of two values.';
