@@ -18,6 +18,19 @@ pub(super) struct Entry {
     pub(super) touched: bool,
 }
 
+impl Entry {
+    /// Vertex `v` of `ring` as a zero-radius circle (`repaired`: added by the closed loop).
+    pub(super) fn point(ring: &[Pt], v: usize, repaired: bool) -> Entry {
+        Entry {
+            c: ring[v],
+            r: 0.0,
+            anchor: v,
+            repaired,
+            touched: true,
+        }
+    }
+}
+
 #[allow(clippy::too_many_arguments)]
 pub(super) fn initial_entries(
     ring: &[Pt],
@@ -49,26 +62,14 @@ pub(super) fn initial_entries(
             touched: true,
         })
         .collect();
-    entries.extend(pinned.iter().map(|&v| Entry {
-        c: ring[v],
-        r: 0.0,
-        anchor: v,
-        repaired: false,
-        touched: true,
-    }));
+    entries.extend(pinned.iter().map(|&v| Entry::point(ring, v, false)));
     if !circles {
         // points alone: the fewest within the tolerance, the touch points among them
         if let Some(tol) = opts.dp_tolerance {
             let snap = |p: Pt| [grid.snap(p[0]), grid.snap(p[1])];
             for v in crate::min_points::keep(ring, tol, pinned, &snap) {
                 if !pinned.contains(&v) {
-                    entries.push(Entry {
-                        c: ring[v],
-                        r: 0.0,
-                        anchor: v,
-                        repaired: false,
-                        touched: true,
-                    });
+                    entries.push(Entry::point(ring, v, false));
                     report.dp_points += 1;
                 }
             }
@@ -84,13 +85,7 @@ pub(super) fn initial_entries(
         }
         for v in douglas_peucker::keep(ring, dp) {
             if !covered[v] {
-                entries.push(Entry {
-                    c: ring[v],
-                    r: 0.0,
-                    anchor: v,
-                    repaired: false,
-                    touched: true,
-                });
+                entries.push(Entry::point(ring, v, false));
                 report.dp_points += 1;
             }
         }
@@ -100,13 +95,7 @@ pub(super) fn initial_entries(
         < 3
     {
         for v in [0, n / 3, 2 * n / 3] {
-            entries.push(Entry {
-                c: ring[v],
-                r: 0.0,
-                anchor: v,
-                repaired: true,
-                touched: true,
-            });
+            entries.push(Entry::point(ring, v, true));
         }
     }
     sort_entries(&mut entries);

@@ -424,13 +424,7 @@ fn repair(st: &mut RingState, spans: &[usize], target: f64, hurry: bool) -> bool
     let m = st.entries.len();
     let mut remove = vec![false; m];
     let mut add: Vec<Entry> = Vec::new();
-    let point = |v: usize| Entry {
-        c: st.pts[v],
-        r: 0.0,
-        anchor: v,
-        repaired: true,
-        touched: true,
-    };
+    let point = |v: usize| Entry::point(&st.pts, v, true);
     for &i in spans {
         if i >= m {
             continue;
