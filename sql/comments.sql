@@ -1,11 +1,30 @@
 -- Catalog documentation: what \dT+ circletree and \df+ ct_* show. Loaded last by src/lib.rs
--- (extension_sql_file!), and repeated in sql/circletree--0.3.0--0.4.0.sql, which introduced it.
+-- (extension_sql_file!), and repeated in the upgrade script of each release that changed it
+-- (sql/circletree--0.3.0--0.4.0.sql introduced it; sql/circletree--0.4.0--0.5.0.sql holds this text).
 COMMENT ON TYPE @extschema@.circletree IS
   'A polygon stored as ordered circles (x, y, ±r), rebuilt from tangents and arcs; valid and within its recorded max_error (Hausdorff) of the original. See docs/FORMAT.md.';
 COMMENT ON FUNCTION @extschema@.ct_encode(geometry, float8, float8, float8, float8) IS
   'ct_encode(geom, min_radius, overlap DEFAULT 0.4, dp_tolerance DEFAULT NULL, max_error DEFAULT NULL): the paper''s circles (medial circles of at least min_radius, overlapping by at most overlap, Douglas-Peucker points at dp_tolerance), repaired until ct_decode is valid and within max_error (NULL: greatest(min_radius, dp_tolerance)). Lengths in the SRID''s units.';
 COMMENT ON FUNCTION @extschema@.ct_encode_within(geometry, float8) IS
   'ct_encode_within(geom, max_error): the fewest bytes whose ct_decode is valid and within max_error (continuous Hausdorff, in the SRID''s units).';
+COMMENT ON FUNCTION @extschema@.ct_encode(geography, float8, float8, float8, float8) IS
+  'ct_encode(geog, min_radius, ...): ct_encode in metres for longitude/latitude data: the geography projected to the WGS 84 UTM zone of its centre (ct_utm_srid), whose SRID the value keeps; ct_decode_geography brings it back.';
+COMMENT ON FUNCTION @extschema@.ct_encode_within(geography, float8) IS
+  'ct_encode_within(geog, max_error): ct_encode_within in metres for longitude/latitude data, in the UTM zone of its centre (ct_utm_srid).';
+COMMENT ON FUNCTION @extschema@.ct_encode(text, float8, float8, float8, float8) IS
+  'ct_encode(text, ...): the text read as a geometry (so an untyped literal is not ambiguous between geometry and geography).';
+COMMENT ON FUNCTION @extschema@.ct_encode_within(text, float8) IS
+  'ct_encode_within(text, max_error): the text read as a geometry.';
+COMMENT ON FUNCTION @extschema@.ct_utm_srid(geography) IS
+  'ct_utm_srid(geog): the SRID of the WGS 84 UTM zone of the centre of geog''s bounding box (32601-32660 north, 32701-32760 south; UPS 32661 north of 84N, 32761 south of 80S), where the geography overloads encode.';
+COMMENT ON FUNCTION @extschema@.ct_decode_geography(@extschema@.circletree, int) IS
+  'ct_decode_geography(ct, srid DEFAULT 4326): ct_decode(ct) transformed to the longitude/latitude SRID srid, as geography.';
+COMMENT ON FUNCTION @extschema@._ct_srid_is_lonlat(int) IS
+  'Internal: whether spatial_ref_sys gives the SRID longitude/latitude units (degrees).';
+COMMENT ON FUNCTION @extschema@._ct_check_degrees(bool, int, float8, float8, float8) IS
+  'Internal: true, or an ERROR when a longitude/latitude SRID meets a length of a degree or more (metres given by mistake).';
+COMMENT ON FUNCTION @extschema@._ct_invalid_reason(geometry) IS
+  'Internal: ST_IsValidReason of an invalid Polygon or MultiPolygon, else NULL.';
 COMMENT ON FUNCTION @extschema@.ct_decode(@extschema@.circletree) IS
   'ct_decode(ct): the rebuilt POLYGON or MULTIPOLYGON, SRID kept, arcs stroked to the value''s grid step.';
 COMMENT ON FUNCTION @extschema@.ct_decode(@extschema@.circletree, float8) IS
@@ -31,7 +50,7 @@ COMMENT ON FUNCTION @extschema@.ct_storage_ratio(@extschema@.circletree) IS
 COMMENT ON FUNCTION @extschema@.ct_storage_ratio(@extschema@.circletree, geometry) IS
   'ct_storage_ratio(ct, geom): pg_column_size(ct) over pg_column_size(geom).';
 COMMENT ON FUNCTION @extschema@.ct_sliver_error(@extschema@.circletree, geometry) IS
-  'ct_sliver_error(ct, geom): area of the symmetric difference between ct_decode(ct) and geom (the SRID''s units squared).';
+  'ct_sliver_error(ct, geom): area of the symmetric difference between ct_decode(ct) and geom (the SRID''s units squared); an invalid geom is refused (22023).';
 COMMENT ON FUNCTION @extschema@.ct_sliver_ratio(@extschema@.circletree, geometry) IS
   'ct_sliver_ratio(ct, geom): ct_sliver_error over ST_Area(geom).';
 COMMENT ON FUNCTION @extschema@.ct_hausdorff(@extschema@.circletree, geometry) IS
@@ -53,7 +72,9 @@ COMMENT ON FUNCTION @extschema@._ct_decode_wkb(@extschema@.circletree, float8) I
 COMMENT ON FUNCTION @extschema@._ct_decode_curved_wkt(@extschema@.circletree) IS
   'Internal, kept for databases not yet updated from 0.3.0: the rebuilt polygon with true arcs as WKT.';
 COMMENT ON FUNCTION @extschema@._ct_sliver_error_wkb(@extschema@.circletree, bytea) IS
-  'Internal: ct_sliver_error against WKB.';
+  'Internal: ct_sliver_error against WKB (0.4.0''s wrappers; 0.5.0''s pass the validity too).';
+COMMENT ON FUNCTION @extschema@._ct_sliver_error_wkb(@extschema@.circletree, bytea, text) IS
+  'Internal: ct_sliver_error against WKB, refusing an invalid original (its ST_IsValidReason).';
 COMMENT ON FUNCTION @extschema@._ct_hausdorff_wkb(@extschema@.circletree, bytea) IS
   'Internal: ct_hausdorff against WKB.';
 COMMENT ON FUNCTION @extschema@._ct_hausdorff_wkb2(bytea, bytea) IS

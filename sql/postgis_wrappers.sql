@@ -1,5 +1,6 @@
 -- PostGIS-facing wrappers (loaded by src/lib.rs with extension_sql_file!, and repeated as they are in
--- the upgrade script that introduced this form, sql/circletree--0.3.0--0.4.0.sql).
+-- the upgrade script of each release that changed them: sql/circletree--0.3.0--0.4.0.sql holds
+-- 0.4.0's, sql/circletree--0.4.0--0.5.0.sql this text).
 --
 -- They are SQL functions so the planner can inline them. Every function they call is schema-qualified,
 -- so a schema ahead of PostGIS's in a caller's search_path cannot change what they compute (the
@@ -34,32 +35,85 @@ CREATE OR REPLACE FUNCTION @extschema@.ct_envelope(ct @extschema@.circletree) RE
     LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
     AS $$ SELECT %1$I.ST_GeomFromEWKB(@extschema@._ct_envelope_ewkb($1)) $$;
 
--- Validity is PostGIS's own (ST_IsValid), so what PostGIS accepts, circletree accepts.
+-- Whether an SRID's units are degrees of longitude and latitude (from PostGIS's spatial_ref_sys).
+-- IMMUTABLE as PostGIS's ST_Transform is (an SRID's definition does not change), so ct_encode
+-- stays inlinable.
+CREATE OR REPLACE FUNCTION @extschema@._ct_srid_is_lonlat(srid int) RETURNS bool
+    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
+    AS $$ SELECT COALESCE((SELECT s.proj4text LIKE '%%+proj=longlat%%' OR s.srtext LIKE 'GEOGCS%%'
+                                        OR s.srtext LIKE 'GEOGCRS%%'
+                                       FROM %1$I.spatial_ref_sys s WHERE s.srid = $1), false) $$;
+
+-- Validity is PostGIS's own (ST_IsValid), so what PostGIS accepts, circletree accepts. On a
+-- longitude/latitude SRID a length of a degree or more is refused (metres given by mistake).
 CREATE OR REPLACE FUNCTION @extschema@.ct_encode(geom %1$I.geometry, min_radius float8, overlap float8 DEFAULT 0.4,
                           dp_tolerance float8 DEFAULT NULL, max_error float8 DEFAULT NULL)
     RETURNS @extschema@.circletree LANGUAGE sql IMMUTABLE PARALLEL SAFE
-    AS $$ SELECT @extschema@._ct_encode_wkb(%1$I.ST_AsBinary($1), %1$I.ST_SRID($1),
+    AS $$ SELECT CASE WHEN @extschema@._ct_check_degrees(@extschema@._ct_srid_is_lonlat(%1$I.ST_SRID($1)),
+                                                       %1$I.ST_SRID($1), $2, $4, $5)
+            THEN @extschema@._ct_encode_wkb(%1$I.ST_AsBinary($1), %1$I.ST_SRID($1),
             CASE WHEN %1$I.GeometryType($1) IN ('POLYGON', 'MULTIPOLYGON') AND NOT %1$I.ST_IsValid($1)
                  THEN %1$I.ST_IsValidReason($1) END,
-            $2, $3, $4, $5) $$;
+            $2, $3, $4, $5) END $$;
 -- The fewest bytes whose ct_decode is valid and within max_error (points only, on the grid that
 -- gives the fewest bytes; see docs/ALGORITHM.md).
 CREATE OR REPLACE FUNCTION @extschema@.ct_encode_within(geom %1$I.geometry, max_error float8)
     RETURNS @extschema@.circletree LANGUAGE sql IMMUTABLE PARALLEL SAFE
-    AS $$ SELECT @extschema@._ct_encode_within_wkb(%1$I.ST_AsBinary($1), %1$I.ST_SRID($1),
+    AS $$ SELECT CASE WHEN @extschema@._ct_check_degrees(@extschema@._ct_srid_is_lonlat(%1$I.ST_SRID($1)),
+                                                       %1$I.ST_SRID($1), NULL, NULL, $2)
+            THEN @extschema@._ct_encode_within_wkb(%1$I.ST_AsBinary($1), %1$I.ST_SRID($1),
             CASE WHEN %1$I.GeometryType($1) IN ('POLYGON', 'MULTIPOLYGON') AND NOT %1$I.ST_IsValid($1)
                  THEN %1$I.ST_IsValidReason($1) END,
-            $2) $$;
+            $2) END $$;
+
+-- Longitude/latitude data in metres: a geography is encoded in the WGS 84 UTM zone of its bounding
+-- box's centre (UPS north of 84N and south of 80S), where lengths are metres; the value keeps that
+-- SRID, and ct_decode_geography brings it back to longitude/latitude.
+CREATE OR REPLACE FUNCTION @extschema@.ct_utm_srid(geog %1$I.geography) RETURNS int
+    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
+    AS $$ SELECT CASE WHEN lat > 84 THEN 32661 WHEN lat < -80 THEN 32761
+                      WHEN lat >= 0 THEN 32600 + zone ELSE 32700 + zone END
+            FROM (SELECT (%1$I.ST_YMin(b) + %1$I.ST_YMax(b)) / 2 AS lat,
+                         LEAST(60, GREATEST(1,
+                           pg_catalog.floor(((%1$I.ST_XMin(b) + %1$I.ST_XMax(b)) / 2 + 180) / 6)::int + 1)) AS zone
+                    FROM (SELECT %1$I.Box3D($1::%1$I.geometry) AS b) bb) c $$;
+CREATE OR REPLACE FUNCTION @extschema@.ct_encode(geog %1$I.geography, min_radius float8, overlap float8 DEFAULT 0.4,
+                          dp_tolerance float8 DEFAULT NULL, max_error float8 DEFAULT NULL)
+    RETURNS @extschema@.circletree LANGUAGE sql IMMUTABLE PARALLEL SAFE
+    AS $$ SELECT @extschema@.ct_encode(%1$I.ST_Transform($1::%1$I.geometry, @extschema@.ct_utm_srid($1)),
+                                       $2, $3, $4, $5) $$;
+CREATE OR REPLACE FUNCTION @extschema@.ct_encode_within(geog %1$I.geography, max_error float8)
+    RETURNS @extschema@.circletree LANGUAGE sql IMMUTABLE PARALLEL SAFE
+    AS $$ SELECT @extschema@.ct_encode_within(%1$I.ST_Transform($1::%1$I.geometry, @extschema@.ct_utm_srid($1)), $2) $$;
+CREATE OR REPLACE FUNCTION @extschema@.ct_decode_geography(ct @extschema@.circletree, srid int DEFAULT 4326)
+    RETURNS %1$I.geography LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
+    AS $$ SELECT %1$I.ST_Transform(@extschema@.ct_decode($1), $2)::%1$I.geography $$;
+-- Text (an untyped literal) reads as geometry, as PostGIS's own text variants do: with both a
+-- geometry and a geography ct_encode, ct_encode('POLYGON(...)', 5) would otherwise be ambiguous.
+CREATE OR REPLACE FUNCTION @extschema@.ct_encode(geom text, min_radius float8, overlap float8 DEFAULT 0.4,
+                          dp_tolerance float8 DEFAULT NULL, max_error float8 DEFAULT NULL)
+    RETURNS @extschema@.circletree LANGUAGE sql IMMUTABLE PARALLEL SAFE
+    AS $$ SELECT @extschema@.ct_encode($1::%1$I.geometry, $2, $3, $4, $5) $$;
+CREATE OR REPLACE FUNCTION @extschema@.ct_encode_within(geom text, max_error float8)
+    RETURNS @extschema@.circletree LANGUAGE sql IMMUTABLE PARALLEL SAFE
+    AS $$ SELECT @extschema@.ct_encode_within($1::%1$I.geometry, $2) $$;
 
 CREATE OR REPLACE FUNCTION @extschema@.ct_storage_ratio(ct @extschema@.circletree, geom %1$I.geometry) RETURNS float8
     LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
     AS $$ SELECT pg_catalog.pg_column_size($1)::float8 / pg_catalog.pg_column_size($2) $$;
+-- PostGIS's reason when a (Multi)Polygon is not valid, else NULL (other types are refused later,
+-- by their type).
+CREATE OR REPLACE FUNCTION @extschema@._ct_invalid_reason(geom %1$I.geometry) RETURNS text
+    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
+    AS $$ SELECT CASE WHEN %1$I.GeometryType($1) IN ('POLYGON', 'MULTIPOLYGON') AND NOT %1$I.ST_IsValid($1)
+                      THEN %1$I.ST_IsValidReason($1) END $$;
 CREATE OR REPLACE FUNCTION @extschema@.ct_sliver_error(ct @extschema@.circletree, geom %1$I.geometry) RETURNS float8
     LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
-    AS $$ SELECT @extschema@._ct_sliver_error_wkb($1, %1$I.ST_AsBinary($2)) $$;
+    AS $$ SELECT @extschema@._ct_sliver_error_wkb($1, %1$I.ST_AsBinary($2), @extschema@._ct_invalid_reason($2)) $$;
 CREATE OR REPLACE FUNCTION @extschema@.ct_sliver_ratio(ct @extschema@.circletree, geom %1$I.geometry) RETURNS float8
     LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
-    AS $$ SELECT @extschema@._ct_sliver_error_wkb($1, %1$I.ST_AsBinary($2)) / NULLIF(%1$I.ST_Area($2), 0) $$;
+    AS $$ SELECT @extschema@._ct_sliver_error_wkb($1, %1$I.ST_AsBinary($2), @extschema@._ct_invalid_reason($2))
+                 / NULLIF(%1$I.ST_Area($2), 0) $$;
 CREATE OR REPLACE FUNCTION @extschema@.ct_hausdorff(ct @extschema@.circletree, geom %1$I.geometry) RETURNS float8
     LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
     AS $$ SELECT @extschema@._ct_hausdorff_wkb($1, %1$I.ST_AsBinary($2)) $$;

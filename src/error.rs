@@ -21,7 +21,7 @@ fn classify(e: &Error) -> (PgSqlErrorCode, &'static str) {
         }
         Error::InvalidPolygon(_) => (
             ERRCODE_INVALID_PARAMETER_VALUE,
-            "Repair the geometry first, e.g. ct_encode(ST_MakeValid(geom), ...); ST_IsValidReason(geom) says what is wrong.",
+            "Repair the geometry first with ST_MakeValid(geom); ST_IsValidReason(geom) says what is wrong.",
         ),
         Error::BadWkb(_) => (ERRCODE_INVALID_PARAMETER_VALUE, "The geometry could not be read as WKB."),
         Error::Corrupt(_) => (

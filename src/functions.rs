@@ -204,10 +204,54 @@ fn original(wkb: &[u8]) -> Vec<circletree_core::geometry::Polygon> {
     circletree_core::wkb::read(wkb).or_raise().shape.parts
 }
 
-/// Area of the symmetric difference between the rebuilt value and a geometry (WKB).
+/// Area of the symmetric difference between the rebuilt value and a geometry (WKB). Release
+/// 0.4.0's wrappers call this one; 0.5.0's pass the geometry's validity too.
 #[pg_extern(immutable, strict, parallel_safe)]
 fn _ct_sliver_error_wkb(ct: CircleTree, wkb: &[u8]) -> f64 {
     circletree_core::metrics::value_sliver(&ct.value, &original(wkb))
+}
+
+/// [`_ct_sliver_error_wkb`] refusing an invalid original (`invalid_reason` is PostGIS's
+/// `ST_IsValidReason` when `ST_IsValid` is false): an area between an invalid polygon and the
+/// rebuilt one is not defined (PostGIS's `ST_SymDifference` raises on such input too).
+#[pg_extern(immutable, parallel_safe, name = "_ct_sliver_error_wkb")]
+fn _ct_sliver_error_checked_wkb(
+    ct: Option<CircleTree>,
+    wkb: Option<&[u8]>,
+    invalid_reason: Option<&str>,
+) -> Option<f64> {
+    let (ct, wkb) = (ct?, wkb?);
+    if let Some(reason) = invalid_reason {
+        crate::error::raise(circletree_core::Error::InvalidPolygon(reason.to_string()));
+    }
+    Some(circletree_core::metrics::value_sliver(
+        &ct.value,
+        &original(wkb),
+    ))
+}
+
+/// True, or an ERROR when a longitude/latitude SRID (`lonlat`, read from spatial_ref_sys by the
+/// SQL wrapper) meets a length of a degree or more: such lengths are metres given by mistake.
+#[pg_extern(immutable, parallel_safe)]
+fn _ct_check_degrees(
+    lonlat: Option<bool>,
+    srid: Option<i32>,
+    min_radius: Option<f64>,
+    dp_tolerance: Option<f64>,
+    max_error: Option<f64>,
+) -> bool {
+    if lonlat == Some(true) {
+        circletree_core::encode::check_degrees(
+            srid.unwrap_or(0),
+            &[
+                ("min_radius", min_radius),
+                ("dp_tolerance", dp_tolerance),
+                ("max_error", max_error),
+            ],
+        )
+        .or_raise();
+    }
+    true
 }
 
 /// Continuous Hausdorff distance between the rebuilt boundary and a geometry's boundary (WKB).

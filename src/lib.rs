@@ -20,6 +20,8 @@ extension_sql_file!(
         functions::_ct_encode_wkb,
         functions::_ct_encode_within_wkb,
         functions::_ct_sliver_error_wkb,
+        functions::_ct_sliver_error_checked_wkb,
+        functions::_ct_check_degrees,
         functions::_ct_hausdorff_wkb,
         functions::_ct_hausdorff_wkb2,
         functions::ct_summary,

@@ -20,15 +20,81 @@ pub fn ring_circles(ct: &CircleTree, ring: &[Circle]) -> Vec<[f64; 3]> {
     ring.iter().map(|c| [f(c.x), f(c.y), f(c.r)]).collect()
 }
 
-/// Check an arc tolerance (`None` means the grid step).
+/// Below this fraction of a value's largest radius an arc tolerance may need more chords than
+/// [`crate::reconstruct::MAX_ARC_SEGMENTS`] on some arc (a full circle stroked at it takes 4,056),
+/// so the arcs themselves are measured ([`finest_tolerance`]).
+pub const MIN_TOLERANCE_PER_RADIUS: f64 = 3e-7;
+
+/// The finest tolerance at which no arc of the value needs more than `MAX_ARC_SEGMENTS` chords.
+pub fn finest_tolerance(ct: &CircleTree) -> f64 {
+    let mut worst = 0.0f64;
+    for ring in ct.parts.iter().flatten() {
+        for seg in crate::reconstruct::ring_spans(&ring_circles(ct, ring))
+            .iter()
+            .flatten()
+        {
+            if let crate::reconstruct::Seg::Arc { r, sweep, .. } = *seg {
+                let step = sweep.abs() / (crate::reconstruct::MAX_ARC_SEGMENTS - 1) as f64;
+                worst = worst.max(r * (1.0 - (step / 2.0).cos()));
+            }
+        }
+    }
+    worst
+}
+
+/// `x` rounded up to two significant digits (a number a message can show and a user can type).
+fn round_up_2(x: f64) -> f64 {
+    if !(x.is_finite() && x > 0.0) {
+        return 0.0;
+    }
+    let e = x.log10().floor() as i32 - 1;
+    if e < 0 {
+        (x * 10f64.powi(-e)).ceil() / 10f64.powi(-e)
+    } else {
+        (x / 10f64.powi(e)).ceil() * 10f64.powi(e)
+    }
+}
+
+/// Check an arc tolerance (`None` means the grid step). A tolerance so fine that some arc would
+/// need more than `MAX_ARC_SEGMENTS` chords is refused, never silently stroked coarser; by
+/// default (`None`) such a value is stroked at the finest tolerance it allows.
 pub fn arc_tolerance(ct: &CircleTree, tol: Option<f64>) -> Result<f64> {
+    let t = match tol {
+        None => ct.grid_f64(),
+        Some(t) if t.is_finite() && t > 0.0 => t,
+        Some(t) => {
+            return Err(Error::InvalidParameter {
+                name: "arc_tolerance",
+                value: crate::error::number(t),
+                range: "a positive, finite length".into(),
+            })
+        }
+    };
+    let rmax = ct
+        .parts
+        .iter()
+        .flatten()
+        .flatten()
+        .map(|c| c.r.unsigned_abs())
+        .max()
+        .unwrap_or(0) as f64
+        * ct.grid_f64();
+    if t >= rmax * MIN_TOLERANCE_PER_RADIUS {
+        return Ok(t);
+    }
+    let finest = round_up_2(finest_tolerance(ct));
     match tol {
-        None => Ok(ct.grid_f64()),
-        Some(t) if t.is_finite() && t > 0.0 => Ok(t),
-        Some(t) => Err(Error::InvalidParameter {
+        _ if t >= finest => Ok(t),
+        None => Ok(finest),
+        Some(_) => Err(Error::InvalidParameter {
             name: "arc_tolerance",
-            value: t.to_string(),
-            range: "a positive, finite length".into(),
+            value: crate::error::number(t),
+            range: format!(
+                "at least {} for this value (finer, an arc of one of its circles would need more \
+                 than {} chords)",
+                crate::error::number(finest),
+                crate::reconstruct::MAX_ARC_SEGMENTS
+            ),
         }),
     }
 }
@@ -137,6 +203,7 @@ pub fn to_curved_wkt(ct: &CircleTree) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::reconstruct::{arc_segments, MAX_ARC_SEGMENTS};
 
     #[test]
     fn ewkb_carries_the_srid_once() {
@@ -150,5 +217,31 @@ mod tests {
         assert_eq!(&e[5..9], &32760i32.to_le_bytes());
         assert_eq!(&e[9..], &wkb[5..]);
         assert_eq!(with_srid(wkb.clone(), 0), wkb);
+    }
+
+    #[test]
+    fn the_finest_tolerance_strokes_every_arc_within_the_cap() {
+        for r in [1.0, 37.5, 1e6] {
+            let k = arc_segments(r, std::f64::consts::TAU, r * MIN_TOLERANCE_PER_RADIUS);
+            assert!(k < MAX_ARC_SEGMENTS, "{k} chords for radius {r}");
+        }
+        // one circle, its whole boundary one arc of radius 100
+        let ct = crate::text::from_text(
+            "CIRCLETREE(version=2;grid=0.5;min_radius=5;overlap=0.4;dp_tolerance=NULL;max_error=5;\
+             vertices=5;wkb_bytes=93;repaired=0;bbox=(0 0,200 200);POLYGON((100 100 100)))",
+        )
+        .unwrap();
+        let f = finest_tolerance(&ct);
+        assert!(f > 2e-5 && f < 3e-5, "{f}");
+        let circle = |t: f64| polygons(&ct, t)[0][0].len();
+        assert_eq!(arc_tolerance(&ct, Some(3e-5)).unwrap(), 3e-5);
+        assert!(circle(3e-5) <= MAX_ARC_SEGMENTS);
+        let err = arc_tolerance(&ct, Some(1e-300)).unwrap_err().to_string();
+        assert!(
+            err.contains("1e-300") && err.contains("at least 0.00003 "),
+            "{err}"
+        );
+        assert!(arc_tolerance(&ct, Some(f64::NAN)).is_err());
+        assert_eq!(arc_tolerance(&ct, None).unwrap(), 0.5);
     }
 }

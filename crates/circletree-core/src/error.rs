@@ -3,6 +3,17 @@
 
 use thiserror::Error;
 
+/// A number as an error message shows it: plainly, or in exponent form when it is very large or
+/// very small (`1e-300`, not three hundred zeros).
+pub fn number(v: f64) -> String {
+    let a = v.abs();
+    if a != 0.0 && a.is_finite() && !(1e-6..1e16).contains(&a) {
+        format!("{v:e}")
+    } else {
+        v.to_string()
+    }
+}
+
 /// Errors of the circletree core.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum Error {
@@ -48,3 +59,15 @@ pub enum Error {
 
 /// Result with the core's error.
 pub type Result<T> = std::result::Result<T, Error>;
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn numbers_stay_short() {
+        assert_eq!(super::number(1e-300), "1e-300");
+        assert_eq!(super::number(-1e300), "-1e300");
+        assert_eq!(super::number(0.4), "0.4");
+        assert_eq!(super::number(f64::NAN), "NaN");
+        assert_eq!(super::number(-1.0), "-1");
+    }
+}

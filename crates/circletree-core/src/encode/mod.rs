@@ -80,7 +80,7 @@ fn positive(name: &'static str, v: f64) -> Result<f64> {
     } else {
         Err(Error::InvalidParameter {
             name,
-            value: v.to_string(),
+            value: crate::error::number(v),
             range: "a positive, finite length between 1e-100 and 1e100".into(),
         })
     }
@@ -89,7 +89,7 @@ fn positive(name: &'static str, v: f64) -> Result<f64> {
 fn decimal(name: &'static str, v: f64) -> Result<Decimal> {
     Decimal::from_f64(v).ok_or(Error::InvalidParameter {
         name,
-        value: v.to_string(),
+        value: crate::error::number(v),
         range: "a positive, finite length between 1e-100 and 1e100".into(),
     })
 }
@@ -101,7 +101,7 @@ impl Options {
         if !(self.overlap.is_finite() && (0.0..=1.0).contains(&self.overlap)) {
             return Err(Error::InvalidParameter {
                 name: "overlap",
-                value: self.overlap.to_string(),
+                value: crate::error::number(self.overlap),
                 range: "between 0 and 1".into(),
             });
         }
@@ -115,7 +115,7 @@ impl Options {
         if !(MAX_ERROR_RANGE.0..=MAX_ERROR_RANGE.1).contains(&m) {
             return Err(Error::InvalidParameter {
                 name: "max_error",
-                value: m.to_string(),
+                value: crate::error::number(m),
                 range: format!(
                     "between {:e} and {:e} (when NULL it is greatest(min_radius, dp_tolerance))",
                     MAX_ERROR_RANGE.0, MAX_ERROR_RANGE.1
@@ -247,6 +247,26 @@ pub fn encode_within(
 /// 10 m 341,205 / 339,824 / 339,625; 25 m 235,173 / 234,417 / 234,293; 100 m 92,465 / 70,944 / 73,362.
 const WITHIN_GRIDS: [f64; 3] = [1.4, 0.8, 0.5];
 
+/// Refuse lengths of a degree or more on a longitude/latitude SRID: no one means an error of 111 km,
+/// so they are metres given by mistake (`ct_encode(geom, 5, 0.4, 10)` on EPSG:4326 would otherwise
+/// keep four points of a whole island). Smaller lengths are taken as degrees, as PostGIS does.
+pub fn check_degrees(srid: i32, lengths: &[(&'static str, Option<f64>)]) -> Result<()> {
+    for &(name, v) in lengths {
+        if let Some(v) = v.filter(|v| v.abs() >= 1.0) {
+            return Err(Error::InvalidParameter {
+                name,
+                value: crate::error::number(v),
+                range: format!(
+                    "less than 1 on SRID {srid}, whose units are degrees of longitude and latitude; \
+                     for metres, encode the geography: ct_encode(geom::geography, ...) works in the \
+                     UTM zone's metres (ct_utm_srid)"
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
 /// The largest grid of two significant digits not above `x` (`None` outside the format's range).
 fn grid_near(x: f64) -> Option<Decimal> {
     if !(x.is_finite() && x > 0.0) {
@@ -260,7 +280,7 @@ fn grid_near(x: f64) -> Option<Decimal> {
 fn range_error(max_error: f64) -> Error {
     Error::InvalidParameter {
         name: "max_error",
-        value: max_error.to_string(),
+        value: crate::error::number(max_error),
         range: format!(
             "between {:e} and {:e}",
             MAX_ERROR_RANGE.0, MAX_ERROR_RANGE.1
@@ -321,7 +341,7 @@ fn check_steps(prep: &Prepared, max_error: f64, grid: Decimal) -> Result<()> {
     if magnitude / grid.to_f64() > STEP_LIMIT {
         return Err(Error::InvalidParameter {
             name: "max_error",
-            value: max_error.to_string(),
+            value: crate::error::number(max_error),
             range: format!(
                 "at least {:e} for coordinates as large as {magnitude:e} (the grid, about half of max_error, must hold them in 2^50 steps)",
                 magnitude / STEP_LIMIT * 10.0
@@ -435,6 +455,23 @@ const REFINEMENTS: usize = 6;
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn degrees_are_checked() {
+        assert!(
+            check_degrees(4326, &[("min_radius", Some(0.001)), ("dp_tolerance", None)]).is_ok()
+        );
+        let e = check_degrees(
+            4326,
+            &[("min_radius", Some(0.5)), ("max_error", Some(10.0))],
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("max_error: 10;") && e.contains("SRID 4326"),
+            "{e}"
+        );
+    }
     use crate::geometry::Kind;
 
     fn wkb_of(parts: Vec<Vec<Vec<Pt>>>) -> Vec<u8> {

@@ -132,7 +132,9 @@ impl CircleTree {
                     ));
                 }
                 if ring.iter().any(|c| {
-                    c.x.abs() > MAX_STEPS || c.y.abs() > MAX_STEPS || c.r.abs() > MAX_STEPS
+                    [c.x, c.y, c.r]
+                        .iter()
+                        .any(|v| v.unsigned_abs() > MAX_STEPS as u64)
                 }) {
                     return bad(format!(
                         "a circle of ring {} of part {} is out of range",
@@ -179,7 +181,7 @@ impl CircleTree {
             if b[0] > b[2] || b[1] > b[3] {
                 return bad("the bounding box is inverted".into());
             }
-            if b.iter().any(|v| v.abs() > MAX_STEPS) {
+            if b.iter().any(|v| v.unsigned_abs() > MAX_STEPS as u64) {
                 return bad("the bounding box is out of range".into());
             }
         }
@@ -372,18 +374,17 @@ impl CircleTree {
         ct.parts = if version == 1 {
             v1::read(&mut r, nparts, cur)?
         } else {
-            let parts = v2::read(r.buf, nparts, cur)?;
-            // One value, one byte string: a stream that is not exactly what this value encodes
-            // to (extended, truncated past its zeros, altered) is refused.
-            if canonical && v2::write(&parts, cur) != r.buf {
-                return Err(Error::Corrupt(
-                    "the coded circles are not in their canonical form (bytes changed or appended)"
-                        .into(),
-                ));
-            }
-            parts
+            v2::read(r.buf, nparts, cur)?
         };
         ct.validate()?;
+        // One value, one byte string (`=` compares bytes): bytes that are not exactly what this
+        // value encodes to are refused, whatever the version: an overlong varint in a header or
+        // in version 1's circles, a version-2 stream extended, truncated past its zeros or altered.
+        if canonical && ct.to_bytes() != bytes {
+            return Err(Error::Corrupt(
+                "the value is not in its canonical form (bytes changed or appended)".into(),
+            ));
+        }
         Ok(ct)
     }
 }
@@ -524,6 +525,35 @@ mod tests {
             CircleTree::from_bytes(&[]),
             Err(Error::Corrupt(_))
         ));
+    }
+
+    #[test]
+    fn overlong_varints_are_refused_from_outside() {
+        // found by the `decode` fuzz target: a varint with a redundant continuation byte reads
+        // as the same number, so two byte strings held one value and `=` (bytes) told them apart
+        for v in VERSIONS {
+            let ct = sample_v(v);
+            let b = ct.to_bytes();
+            assert_eq!(&b[2..5], &[0xf0, 0xff, 0x03], "SRID 32760, zigzag");
+            let mut long = b[..2].to_vec();
+            long.extend([0xf0, 0xff, 0x83, 0x00]);
+            long.extend(&b[5..]);
+            assert_eq!(CircleTree::from_stored_bytes(&long).unwrap(), ct);
+            assert!(matches!(CircleTree::from_bytes(&long),
+                Err(Error::Corrupt(m)) if m.contains("canonical")));
+        }
+    }
+
+    #[test]
+    fn the_most_negative_coordinate_is_out_of_range() {
+        // found by the `decode` fuzz target: `i64::MIN.abs()` overflows (a panic in debug builds,
+        // and in release it stays negative, so the range check let the circle through)
+        let mut ct = sample_v(1);
+        ct.bbox = Some([i64::MIN, 0, 0, 10]);
+        assert!(ct.validate().is_err());
+        let mut ct = sample_v(1);
+        ct.parts[0][0][1].x = i64::MIN;
+        assert!(matches!(ct.validate(), Err(Error::Corrupt(m)) if m.contains("out of range")));
     }
 
     #[test]
