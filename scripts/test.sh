@@ -31,6 +31,11 @@ as_root install -d -o postgres -g postgres "$pgdata"
 cargo pgrx test pg15 --runas postgres --pgdata "$pgdata" </dev/null
 
 echo "== pg_regress"
+# The README's tested SQL blocks are the regress file `readme` (so the README cannot go stale).
+if ! bash scripts/readme_sql.sh | diff -u tests/pg_regress/sql/readme.sql -; then
+  echo "README.md's tested SQL changed: bash scripts/readme_sql.sh > tests/pg_regress/sql/readme.sql, then update expected/readme.out"
+  exit 1
+fi
 cargo pgrx install --pg-config "$PG_CONFIG" </dev/null
 # Release 0.1.0's install script, frozen, so the upgrade test can start from it (regress `upgrade`).
 as_root install -m 644 tests/upgrade/circletree--0.1.0.sql "$($PG_CONFIG --sharedir)/extension/"
