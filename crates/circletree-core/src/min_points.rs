@@ -17,8 +17,15 @@ const WINDOW: usize = 256;
 
 /// Indices of the vertices kept, ascending: every index of `fixed` (vertex 0 when there is none)
 /// and between consecutive fixed vertices the fewest that keep every skipped vertex within `tol`
-/// of its shortcut. The ring is closed (its last vertex joins its first).
-pub fn keep(ring: &[Pt], tol: f64, fixed: &[usize], snap: &dyn Fn(Pt) -> Pt) -> Vec<usize> {
+/// of its shortcut. The ring is closed (its last vertex joins its first). `interrupt` is called
+/// every [`INTERRUPT_EVERY`] vertices (a cancelled query stops within milliseconds).
+pub fn keep(
+    ring: &[Pt],
+    tol: f64,
+    fixed: &[usize],
+    snap: &dyn Fn(Pt) -> Pt,
+    interrupt: &mut dyn FnMut(),
+) -> Vec<usize> {
     let n = ring.len();
     if n <= 3 {
         return (0..n).collect();
@@ -40,7 +47,11 @@ pub fn keep(ring: &[Pt], tol: f64, fixed: &[usize], snap: &dyn Fn(Pt) -> Pt) -> 
     for (k, &a) in anchors.iter().enumerate() {
         let b = anchors.get(k + 1).copied().unwrap_or(anchors[0] + n);
         kept.push(a);
-        kept.extend(chain(ring, a, b, tol, snap).into_iter().map(|v| v % n));
+        kept.extend(
+            chain(ring, a, b, tol, snap, interrupt)
+                .into_iter()
+                .map(|v| v % n),
+        );
     }
     kept.sort_unstable();
     kept.dedup();
@@ -48,7 +59,17 @@ pub fn keep(ring: &[Pt], tol: f64, fixed: &[usize], snap: &dyn Fn(Pt) -> Pt) -> 
 }
 
 /// The fewest interior vertices of the chain `a..=b` (indices modulo the ring's length) to keep.
-fn chain(ring: &[Pt], a: usize, b: usize, tol: f64, snap: &dyn Fn(Pt) -> Pt) -> Vec<usize> {
+/// Vertices between two calls of the interrupt callback.
+pub const INTERRUPT_EVERY: usize = 1024;
+
+fn chain(
+    ring: &[Pt],
+    a: usize,
+    b: usize,
+    tol: f64,
+    snap: &dyn Fn(Pt) -> Pt,
+    interrupt: &mut dyn FnMut(),
+) -> Vec<usize> {
     let n = ring.len();
     let len = b - a;
     if len <= 1 {
@@ -61,6 +82,9 @@ fn chain(ring: &[Pt], a: usize, b: usize, tol: f64, snap: &dyn Fn(Pt) -> Pt) -> 
     let mut from = vec![0usize; len + 1];
     hops[0] = 0;
     for i in 0..len {
+        if i % INTERRUPT_EVERY == 0 {
+            interrupt();
+        }
         if hops[i] == usize::MAX {
             continue;
         }
@@ -181,6 +205,19 @@ fn wrap(a: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn long_rings_call_the_interrupt() {
+        let ring: Vec<Pt> = (0..5000)
+            .map(|i| {
+                let t = i as f64 / 5000.0 * std::f64::consts::TAU;
+                [1000.0 * t.cos(), 1000.0 * t.sin()]
+            })
+            .collect();
+        let mut calls = 0;
+        keep(&ring, 0.5, &[], &|p| p, &mut || calls += 1);
+        assert!(calls >= 5000 / INTERRUPT_EVERY, "{calls} calls");
+    }
+
     use super::*;
 
     fn within(ring: &[Pt], kept: &[usize], tol: f64) -> bool {
@@ -207,14 +244,14 @@ mod tests {
             }
         }
         // corner to corner the wiggles stay within 0.6 of the chord
-        let kept = keep(&ring, 0.7, &[], &|p| p);
+        let kept = keep(&ring, 0.7, &[], &|p| p, &mut || {});
         assert_eq!(kept, vec![0, 10, 20, 30]);
         assert!(within(&ring, &kept, 0.7));
         // a fixed vertex is kept
-        let kept = keep(&ring, 0.7, &[5], &|p| p);
+        let kept = keep(&ring, 0.7, &[5], &|p| p, &mut || {});
         assert!(kept.contains(&5) && within(&ring, &kept, 0.7), "{kept:?}");
         // below the wiggle, every vertex
-        assert_eq!(keep(&ring, 0.2, &[], &|p| p).len(), 40);
+        assert_eq!(keep(&ring, 0.2, &[], &|p| p, &mut || {}).len(), 40);
     }
 
     #[test]
@@ -228,7 +265,7 @@ mod tests {
             })
             .collect();
         for tol in [1.0, 10.0, 40.0, 150.0] {
-            let ours = keep(&ring, tol, &[], &|p| p);
+            let ours = keep(&ring, tol, &[], &|p| p, &mut || {});
             let dp = crate::douglas_peucker::keep(&ring, tol);
             assert!(within(&ring, &ours, tol), "{tol}");
             assert!(

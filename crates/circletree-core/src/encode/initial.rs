@@ -67,7 +67,7 @@ pub(super) fn initial_entries(
         // points alone: the fewest within the tolerance, the touch points among them
         if let Some(tol) = opts.dp_tolerance {
             let snap = |p: Pt| [grid.snap(p[0]), grid.snap(p[1])];
-            for v in crate::min_points::keep(ring, tol, pinned, &snap) {
+            for v in crate::min_points::keep(ring, tol, pinned, &snap, interrupt) {
                 if !pinned.contains(&v) {
                     entries.push(Entry::point(ring, v, false));
                     report.dp_points += 1;
