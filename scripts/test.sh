@@ -49,3 +49,6 @@ if ! "$($PG_CONFIG --pkglibdir)/pgxs/src/test/regress/pg_regress" \
   cat "$out/regression.diffs" 2>/dev/null | head -200
   exit 1
 fi
+
+echo "== round trips: pg_dump/pg_restore and logical replication (two throwaway clusters)"
+bash scripts/roundtrip.sh
