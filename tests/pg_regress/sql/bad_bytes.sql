@@ -37,10 +37,13 @@ CREATE TEMP TABLE back(ct circletree);
 COPY (SELECT bytes::circletree FROM b WHERE name = 'v2 rarotonga') TO '/tmp/circletree_regress_bad.bin' WITH (FORMAT binary);
 SELECT outcome($$COPY back FROM '/tmp/circletree_regress_bad.bin' WITH (FORMAT binary)$$) AS intact;
 -- the file: 19-byte header, then per row a field count (2 bytes) and the datum's length (4)
-SELECT at, (SELECT lo_export(o, '/tmp/circletree_regress_bad_' || at || '.bin') + lo_unlink(o)
-            FROM (SELECT lo_from_bytea(0, set_byte(f, at, CASE WHEN at = 25 THEN 9 ELSE 255 - get_byte(f, at) END)) AS o) s) AS written,
-       outcome(format($$COPY back FROM '/tmp/circletree_regress_bad_%s.bin' WITH (FORMAT binary)$$, at)) AS damaged
-FROM (SELECT pg_read_binary_file('/tmp/circletree_regress_bad.bin') AS f) AS file, unnest(ARRAY[25, 60]) AS at;
+CREATE TEMP TABLE damaged AS
+  SELECT at, lo_from_bytea(0, set_byte(f, at, CASE WHEN at = 25 THEN 9 ELSE 255 - get_byte(f, at) END)) AS o
+    FROM (SELECT pg_read_binary_file('/tmp/circletree_regress_bad.bin') AS f) AS file, unnest(ARRAY[25, 60]) AS at;
+SELECT at, lo_export(o, '/tmp/circletree_regress_bad_' || at || '.bin') AS written FROM damaged ORDER BY at;
+SELECT at, outcome(format($$COPY back FROM '/tmp/circletree_regress_bad_%s.bin' WITH (FORMAT binary)$$, at)) AS damaged
+  FROM damaged ORDER BY at;
+SELECT count(lo_unlink(o)) AS removed FROM damaged;
 SELECT count(*) AS loaded FROM back;
 SELECT count(*) FILTER (WHERE o LIKE 'XX%' OR o LIKE '% NO HINT:%') AS internal_or_unhinted
 FROM b, generate_series(0, length(bytes) - 1) AS i,
