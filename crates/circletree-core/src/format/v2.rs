@@ -204,7 +204,10 @@ pub fn read(bytes: &[u8], nparts: usize, cur: Cursor) -> Result<Vec<Vec<Vec<Circ
     if nparts > budget {
         return Err(Error::Corrupt(format!("the value claims {nparts} parts")));
     }
-    let mut nrings = Vec::with_capacity(nparts);
+    // reservations never exceed what a real stream of this length holds (counts are only bounded
+    // by the coder's floor, hundreds a byte); vectors grow past that as circles are decoded
+    let cap = 8 * bytes.len() + 16;
+    let mut nrings = Vec::with_capacity(nparts.min(cap));
     let mut total_rings = 0usize;
     for _ in 0..nparts {
         let n = count(&mut r, &mut counts, "rings", 1)?;
@@ -216,7 +219,7 @@ pub fn read(bytes: &[u8], nparts: usize, cur: Cursor) -> Result<Vec<Vec<Vec<Circ
         }
         nrings.push(n);
     }
-    let mut sizes = Vec::with_capacity(total_rings);
+    let mut sizes = Vec::with_capacity(total_rings.min(cap));
     let mut total = 0usize;
     for _ in 0..total_rings {
         let n = count(&mut r, &mut counts, "circles", 0)?;
@@ -233,12 +236,12 @@ pub fn read(bytes: &[u8], nparts: usize, cur: Cursor) -> Result<Vec<Vec<Vec<Circ
     m.counts = counts;
     let mut at = cur.start;
     let mut sizes = sizes.into_iter();
-    let mut parts = Vec::with_capacity(nparts);
+    let mut parts = Vec::with_capacity(nparts.min(cap));
     for nr in nrings {
-        let mut rings = Vec::with_capacity(nr);
+        let mut rings = Vec::with_capacity(nr.min(cap));
         for _ in 0..nr {
             let n = sizes.next().unwrap_or(0);
-            let mut ring = Vec::with_capacity(n);
+            let mut ring = Vec::with_capacity(n.min(cap));
             for _ in 0..n {
                 let c = m.get(&mut r, at)?;
                 at = (c.x, c.y);
