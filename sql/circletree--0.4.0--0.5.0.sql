@@ -1,5 +1,5 @@
 -- circletree 0.4.0 -> 0.5.0 (ALTER EXTENSION circletree UPDATE).
--- 0.5.0 adds longitude/latitude support in metres (ct_encode and ct_encode_within on geography,
+-- 0.5.0 adds ct_svg (a picture of a value), longitude/latitude support in metres (ct_encode and ct_encode_within on geography,
 -- encoded in the UTM zone of the data, ct_utm_srid, ct_decode_geography; text overloads so an
 -- untyped literal stays unambiguous), refuses lengths of a degree or more on a longitude/latitude
 -- SRID (metres given by mistake), and refuses an invalid original in ct_sliver_error and
@@ -26,6 +26,15 @@ CREATE FUNCTION "_ct_sliver_error_wkb"(
 IMMUTABLE PARALLEL SAFE
 LANGUAGE c /* Rust */
 AS 'MODULE_PATHNAME', '_ct_sliver_error_checked_wkb_wrapper';
+
+CREATE FUNCTION "_ct_svg_wkb"(
+	"ct" CircleTree, /* Option < CircleTree > */
+	"wkb" bytea, /* Option < & [u8] > */
+	"width" INT /* Option < i32 > */
+) RETURNS TEXT /* Option < String > */
+IMMUTABLE PARALLEL SAFE
+LANGUAGE c /* Rust */
+AS 'MODULE_PATHNAME', '_ct_svg_wkb_wrapper';
 
 -- Every PostGIS-facing wrapper again: the same text as sql/postgis_wrappers.sql, which a fresh
 -- install runs.
@@ -153,6 +162,12 @@ CREATE OR REPLACE FUNCTION @extschema@.ct_hausdorff(a %1$I.geometry, b %1$I.geom
     LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
     AS $$ SELECT @extschema@._ct_hausdorff_wkb2(%1$I.ST_AsBinary($1), %1$I.ST_AsBinary($2)) $$;
 
+-- A picture of the value, like the paper's figures 9, 10 and 15 (the original drawn beneath it when given).
+CREATE OR REPLACE FUNCTION @extschema@.ct_svg(ct @extschema@.circletree, geom %1$I.geometry DEFAULT NULL,
+                                              width int DEFAULT 800) RETURNS text
+    LANGUAGE sql IMMUTABLE PARALLEL SAFE
+    AS $$ SELECT @extschema@._ct_svg_wkb($1, %1$I.ST_AsBinary($2), $3) $$;
+
 -- The paper's experiment (figures 11-14) on one polygon: every combination of the three arrays.
 CREATE OR REPLACE FUNCTION @extschema@.ct_sweep(geom %1$I.geometry,
         min_radius float8[] DEFAULT '{1,5,10,15,25}',
@@ -198,6 +213,10 @@ COMMENT ON FUNCTION @extschema@.ct_utm_srid(geography) IS
   'ct_utm_srid(geog): the SRID of the WGS 84 UTM zone of the centre of geog''s bounding box (32601-32660 north, 32701-32760 south; UPS 32661 north of 84N, 32761 south of 80S), where the geography overloads encode.';
 COMMENT ON FUNCTION @extschema@.ct_decode_geography(@extschema@.circletree, int) IS
   'ct_decode_geography(ct, srid DEFAULT 4326): ct_decode(ct) transformed to the longitude/latitude SRID srid, as geography.';
+COMMENT ON FUNCTION @extschema@.ct_svg(@extschema@.circletree, geometry, int) IS
+  'ct_svg(ct, geom DEFAULT NULL, width DEFAULT 800): an SVG picture: circles inside (blue) and outside (red), boundary points (green), the rebuilt polygon (black) and, when given, the original (grey), with a legend.';
+COMMENT ON FUNCTION @extschema@._ct_svg_wkb(@extschema@.circletree, bytea, int) IS
+  'Internal: ct_svg with the original as WKB.';
 COMMENT ON FUNCTION @extschema@._ct_srid_is_lonlat(int) IS
   'Internal: whether spatial_ref_sys gives the SRID longitude/latitude units (degrees).';
 COMMENT ON FUNCTION @extschema@._ct_check_degrees(bool, int, float8, float8, float8) IS

@@ -19,6 +19,10 @@ COMMENT ON FUNCTION @extschema@.ct_utm_srid(geography) IS
   'ct_utm_srid(geog): the SRID of the WGS 84 UTM zone of the centre of geog''s bounding box (32601-32660 north, 32701-32760 south; UPS 32661 north of 84N, 32761 south of 80S), where the geography overloads encode.';
 COMMENT ON FUNCTION @extschema@.ct_decode_geography(@extschema@.circletree, int) IS
   'ct_decode_geography(ct, srid DEFAULT 4326): ct_decode(ct) transformed to the longitude/latitude SRID srid, as geography.';
+COMMENT ON FUNCTION @extschema@.ct_svg(@extschema@.circletree, geometry, int) IS
+  'ct_svg(ct, geom DEFAULT NULL, width DEFAULT 800): an SVG picture: circles inside (blue) and outside (red), boundary points (green), the rebuilt polygon (black) and, when given, the original (grey), with a legend.';
+COMMENT ON FUNCTION @extschema@._ct_svg_wkb(@extschema@.circletree, bytea, int) IS
+  'Internal: ct_svg with the original as WKB.';
 COMMENT ON FUNCTION @extschema@._ct_srid_is_lonlat(int) IS
   'Internal: whether spatial_ref_sys gives the SRID longitude/latitude units (degrees).';
 COMMENT ON FUNCTION @extschema@._ct_check_degrees(bool, int, float8, float8, float8) IS

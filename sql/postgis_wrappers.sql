@@ -122,6 +122,12 @@ CREATE OR REPLACE FUNCTION @extschema@.ct_hausdorff(a %1$I.geometry, b %1$I.geom
     LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
     AS $$ SELECT @extschema@._ct_hausdorff_wkb2(%1$I.ST_AsBinary($1), %1$I.ST_AsBinary($2)) $$;
 
+-- A picture of the value, like the paper's figures 9, 10 and 15 (the original drawn beneath it when given).
+CREATE OR REPLACE FUNCTION @extschema@.ct_svg(ct @extschema@.circletree, geom %1$I.geometry DEFAULT NULL,
+                                              width int DEFAULT 800) RETURNS text
+    LANGUAGE sql IMMUTABLE PARALLEL SAFE
+    AS $$ SELECT @extschema@._ct_svg_wkb($1, %1$I.ST_AsBinary($2), $3) $$;
+
 -- The paper's experiment (figures 11-14) on one polygon: every combination of the three arrays.
 CREATE OR REPLACE FUNCTION @extschema@.ct_sweep(geom %1$I.geometry,
         min_radius float8[] DEFAULT '{1,5,10,15,25}',

@@ -272,3 +272,21 @@ fn ct_storage_ratio(ct: CircleTree) -> Option<f64> {
     let w = ct.value.wkb_bytes;
     (w > 0).then(|| (ct.bytes.len() + pgrx::pg_sys::VARHDRSZ) as f64 / w as f64)
 }
+
+/// An SVG picture of the value (and of the original, from its WKB, when given): circles inside and
+/// outside, boundary points, the rebuilt polygon, a legend. NULL value gives NULL; NULL width, 800.
+#[pg_extern(immutable, parallel_safe)]
+fn _ct_svg_wkb(ct: Option<CircleTree>, wkb: Option<&[u8]>, width: Option<i32>) -> Option<String> {
+    let ct = ct?;
+    let original = wkb.map(original);
+    let width = width.unwrap_or(800);
+    let width = u32::try_from(width).map_err(|_| circletree_core::Error::InvalidParameter {
+        name: "width",
+        value: width.to_string(),
+        range: "a positive number of pixels".into(),
+    });
+    let (svg, _) = width
+        .and_then(|w| circletree_core::picture::to_svg(&ct.value, original.as_deref(), w))
+        .or_raise();
+    Some(svg)
+}

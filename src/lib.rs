@@ -22,6 +22,7 @@ extension_sql_file!(
         functions::_ct_sliver_error_wkb,
         functions::_ct_sliver_error_checked_wkb,
         functions::_ct_check_degrees,
+        functions::_ct_svg_wkb,
         functions::_ct_hausdorff_wkb,
         functions::_ct_hausdorff_wkb2,
         functions::ct_summary,

@@ -3,7 +3,7 @@
 //!
 //! One module per step: [`wkb`] (input/output), [`medial`] (Voronoi circles, paper 3.1),
 //! [`filter`] (3.3), [`douglas_peucker`] (3.5), [`min_points`] (fewest points within a tolerance), [`reconstruct`] (tangents and arcs, 3.5),
-//! [`validity`], [`encode`] (the pipeline and its closed repair loop), [`format`] (the stored
+//! [`validity`], [`encode`] (the pipeline and its closed repair loop), [`picture`] (an SVG of a value), [`format`] (the stored
 //! bytes), [`text`] (the text form), [`metrics`] (sliver area, Hausdorff).
 #![forbid(unsafe_code)]
 
@@ -21,6 +21,7 @@ pub mod grid;
 pub mod medial;
 pub mod metrics;
 pub mod min_points;
+pub mod picture;
 pub mod reconstruct;
 pub mod text;
 pub mod touch;
