@@ -56,18 +56,8 @@ fn circletree_ne(a: CircleTree, b: CircleTree) -> bool {
     a.bytes != b.bytes
 }
 
-extension_sql!(
-    r#"
-ALTER TYPE circletree SET (RECEIVE = circletree_recv, SEND = circletree_send);
--- Stored as EXTERNAL: out of line when large, never pglz-compressed (see docs/FORMAT.md).
-ALTER TYPE circletree SET (STORAGE = external);
-CREATE CAST (circletree AS bytea) WITH FUNCTION circletree_to_bytea(circletree);
-CREATE CAST (bytea AS circletree) WITH FUNCTION circletree_from_bytea(bytea);
-CREATE OPERATOR = (LEFTARG = circletree, RIGHTARG = circletree, PROCEDURE = circletree_eq,
-    COMMUTATOR = =, NEGATOR = <>, RESTRICT = eqsel, JOIN = eqjoinsel);
-CREATE OPERATOR <> (LEFTARG = circletree, RIGHTARG = circletree, PROCEDURE = circletree_ne,
-    COMMUTATOR = <>, NEGATOR = =, RESTRICT = neqsel, JOIN = neqjoinsel);
-"#,
+extension_sql_file!(
+    "../../sql/binary_io.sql",
     name = "circletree_binary_io",
     requires = [
         circletree_recv,
