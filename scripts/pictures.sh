@@ -19,3 +19,6 @@ pic() {
 pic kapiti_paper "SELECT ct_svg(ct_encode(geom, 5, 0.4, 10), geom, 800) FROM coast WHERE name = 'kapiti_island_linz'"
 pic kapiti_within "SELECT ct_svg(ct_encode_within(geom, 10), geom, 800) FROM coast WHERE name = 'kapiti_island_linz'"
 pic kapiti_paper_coarse "SELECT ct_svg(ct_encode(geom, 50, 0.4, 100), geom, 800) FROM coast WHERE name = 'kapiti_island_linz'"
+# the tangent cases: inside to inside, inside to outside, outside to outside, outside to a point,
+# a point to inside (a value written in the text form)
+pic tangent_cases "SELECT ct_svg('CIRCLETREE(version=2;grid=1;min_radius=1;overlap=0.4;dp_tolerance=NULL;max_error=1;vertices=5;wkb_bytes=93;repaired=0;bbox=(-100 -50,430 310);POLYGON((0 0 40,300 0 40,380 160 -40,150 260 -40,-60 200 0)))'::circletree, NULL, 500)"
