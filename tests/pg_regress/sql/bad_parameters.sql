@@ -27,9 +27,11 @@ FROM (VALUES ('ARRAY[]::float8[]'), ('ARRAY[NULL]::float8[]'), ('ARRAY[5, NULL]:
              ('ARRAY[''NaN'']::float8[]'), ('ARRAY[-1]::float8[]'), ('ARRAY[[5], [6]]::float8[]')) AS t(a)
 ORDER BY a;
 -- a million combinations is a million encodes, as the user asked: statement_timeout stops it
+\set VERBOSITY terse
 SET statement_timeout = '1s';
 SELECT count(*) FROM p, ct_sweep(geom, array_fill(5::float8, ARRAY[1000]), array_fill(0.4::float8, ARRAY[1000]), ARRAY[10]);
 RESET statement_timeout;
+\set VERBOSITY default
 SELECT count(*) AS backend_usable_after FROM p, ct_sweep(geom, ARRAY[5], ARRAY[0.4], ARRAY[10]);
 -- NULL arguments: NULL out for the STRICT functions, never a crash
 SELECT ct_encode(NULL::geometry, 5) IS NULL AS encode_null_geom,
