@@ -84,6 +84,13 @@ CREATE OR REPLACE FUNCTION @extschema@._ct_srid_is_lonlat(srid int) RETURNS bool
                                         OR s.srtext LIKE 'GEOGCRS%%'
                                        FROM %1$I.spatial_ref_sys s WHERE s.srid = $1), false) $$;
 
+-- PostGIS's reason when a (Multi)Polygon is not valid, else NULL (other types are refused later,
+-- by their type).
+CREATE OR REPLACE FUNCTION @extschema@._ct_invalid_reason(geom %1$I.geometry) RETURNS text
+    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
+    AS $$ SELECT CASE WHEN %1$I.GeometryType($1) IN ('POLYGON', 'MULTIPOLYGON') AND NOT %1$I.ST_IsValid($1)
+                      THEN %1$I.ST_IsValidReason($1) END $$;
+
 -- Validity is PostGIS's own (ST_IsValid), so what PostGIS accepts, circletree accepts. On a
 -- longitude/latitude SRID a length of a degree or more is refused (metres given by mistake).
 CREATE OR REPLACE FUNCTION @extschema@.ct_encode(geom %1$I.geometry, min_radius float8, overlap float8 DEFAULT 0.4,
@@ -92,8 +99,7 @@ CREATE OR REPLACE FUNCTION @extschema@.ct_encode(geom %1$I.geometry, min_radius 
     AS $$ SELECT CASE WHEN @extschema@._ct_check_degrees(@extschema@._ct_srid_is_lonlat(%1$I.ST_SRID($1)),
                                                        %1$I.ST_SRID($1), $2, $4, $5)
             THEN @extschema@._ct_encode_wkb(%1$I.ST_AsBinary($1), %1$I.ST_SRID($1),
-            CASE WHEN %1$I.GeometryType($1) IN ('POLYGON', 'MULTIPOLYGON') AND NOT %1$I.ST_IsValid($1)
-                 THEN %1$I.ST_IsValidReason($1) END,
+            @extschema@._ct_invalid_reason($1),
             $2, $3, $4, $5) END $$;
 -- The fewest bytes whose ct_decode is valid and within max_error (points only, on the grid that
 -- gives the fewest bytes; see docs/ALGORITHM.md).
@@ -102,8 +108,7 @@ CREATE OR REPLACE FUNCTION @extschema@.ct_encode_within(geom %1$I.geometry, max_
     AS $$ SELECT CASE WHEN @extschema@._ct_check_degrees(@extschema@._ct_srid_is_lonlat(%1$I.ST_SRID($1)),
                                                        %1$I.ST_SRID($1), NULL, NULL, $2)
             THEN @extschema@._ct_encode_within_wkb(%1$I.ST_AsBinary($1), %1$I.ST_SRID($1),
-            CASE WHEN %1$I.GeometryType($1) IN ('POLYGON', 'MULTIPOLYGON') AND NOT %1$I.ST_IsValid($1)
-                 THEN %1$I.ST_IsValidReason($1) END,
+            @extschema@._ct_invalid_reason($1),
             $2) END $$;
 
 -- Longitude/latitude data in metres: a geography is encoded in the WGS 84 UTM zone of its bounding
@@ -141,12 +146,6 @@ CREATE OR REPLACE FUNCTION @extschema@.ct_encode_within(geom text, max_error flo
 CREATE OR REPLACE FUNCTION @extschema@.ct_storage_ratio(ct @extschema@.circletree, geom %1$I.geometry) RETURNS float8
     LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
     AS $$ SELECT pg_catalog.pg_column_size($1)::float8 / pg_catalog.pg_column_size($2) $$;
--- PostGIS's reason when a (Multi)Polygon is not valid, else NULL (other types are refused later,
--- by their type).
-CREATE OR REPLACE FUNCTION @extschema@._ct_invalid_reason(geom %1$I.geometry) RETURNS text
-    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
-    AS $$ SELECT CASE WHEN %1$I.GeometryType($1) IN ('POLYGON', 'MULTIPOLYGON') AND NOT %1$I.ST_IsValid($1)
-                      THEN %1$I.ST_IsValidReason($1) END $$;
 CREATE OR REPLACE FUNCTION @extschema@.ct_sliver_error(ct @extschema@.circletree, geom %1$I.geometry) RETURNS float8
     LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
     AS $$ SELECT @extschema@._ct_sliver_error_wkb($1, %1$I.ST_AsBinary($2), @extschema@._ct_invalid_reason($2)) $$;
