@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs every test: formatting, hadolint on the Dockerfile, clippy (warnings are errors), the core's tests, the #[pg_test]s
 # (as postgres, in a throw-away cluster), then the pg_regress files against the local PostgreSQL 15
-# with PostGIS, then the round trips of scripts/roundtrip.sh (pg_dump/pg_restore, logical replication). Any failure fails the run. Sets the machine up first when needed (scripts/setup.sh).
+# with PostGIS, then the round trips of scripts/roundtrip.sh (pg_dump/pg_restore, logical replication) and the crash-recovery test of scripts/crashtest.sh. Any failure fails the run. Sets the machine up first when needed (scripts/setup.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/setup.sh
@@ -52,3 +52,6 @@ fi
 
 echo "== round trips: pg_dump/pg_restore and logical replication (two throwaway clusters)"
 bash scripts/roundtrip.sh
+
+echo "== crash recovery: the server killed during inserts (a throwaway cluster)"
+bash scripts/crashtest.sh 10

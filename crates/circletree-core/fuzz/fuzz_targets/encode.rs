@@ -23,6 +23,14 @@ fn star(n: &[u8], r0: f64, scale: f64) -> Vec<Pt> {
         .collect()
 }
 
+fn ring_area(r: &[Pt]) -> f64 {
+    r.iter()
+        .zip(r.iter().cycle().skip(1))
+        .map(|(a, b)| a[0] * b[1] - a[1] * b[0])
+        .sum::<f64>()
+        / 2.0
+}
+
 fuzz_target!(|data: &[u8]| {
     if data.len() < 5 {
         return;
@@ -59,7 +67,11 @@ fuzz_target!(|data: &[u8]| {
         return;
     }
     let parts = vec![rings];
-    let valid = wkb::to_geo(&parts).is_valid();
+    // geo's OGC validation passes a ring whose edges fold back onto each other (zero area, e.g.
+    // (0 0, 1000 0, 18 0, 0 0): the fuzzer's first finding); PostGIS calls that a self-intersection
+    // and the SQL wrappers refuse it before the encoder sees it, so it is not a valid polygon here.
+    let valid = wkb::to_geo(&parts).is_valid()
+        && parts.iter().flatten().all(|r| ring_area(r).abs() > 0.0);
     let input = wkb::write(Kind::Polygon, &parts);
     let res = if within {
         encode_within(&input, 0, bound, None, &mut || {})
