@@ -156,6 +156,11 @@ fn _ct_encode_wkb(
     max_error: Option<f64>,
 ) -> Option<CircleTree> {
     let (wkb, min_radius, overlap) = (wkb?, min_radius?, overlap?);
+    crate::settings::check_encode_memory(
+        wkb,
+        crate::settings::ENCODE_BYTES_PER_VERTEX,
+        "ct_encode",
+    );
     let opts = circletree_core::encode::Options {
         min_radius,
         overlap,
@@ -186,6 +191,11 @@ fn _ct_encode_within_wkb(
     max_error: Option<f64>,
 ) -> Option<CircleTree> {
     let (wkb, max_error) = (wkb?, max_error?);
+    crate::settings::check_encode_memory(
+        wkb,
+        crate::settings::ENCODE_WITHIN_BYTES_PER_VERTEX,
+        "ct_encode_within",
+    );
     let (value, report) = circletree_core::encode::encode_within(
         wkb,
         srid.unwrap_or(0),

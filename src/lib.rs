@@ -9,6 +9,13 @@ use pgrx::prelude::*;
 pub mod datatype;
 pub mod error;
 pub mod functions;
+pub mod settings;
+
+/// Registers the settings (`circletree.max_encode_memory`).
+#[pg_guard]
+pub extern "C-unwind" fn _PG_init() {
+    settings::init();
+}
 
 extension_sql_file!(
     "../sql/postgis_wrappers.sql",
