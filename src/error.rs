@@ -32,6 +32,10 @@ fn classify(e: &Error) -> (PgSqlErrorCode, &'static str) {
             ERRCODE_INVALID_TEXT_REPRESENTATION,
             "The text form is SRID=...;CIRCLETREE(grid=...;...;POLYGON((x y r,...))); print any value with ::text to see one, docs/FORMAT.md describes it.",
         ),
+        Error::TooLarge(_) => (
+            ERRCODE_PROGRAM_LIMIT_EXCEEDED,
+            "Decode at a coarser arc tolerance, ct_decode(ct, arc_tolerance), or keep the true arcs with ct_decode_curved(ct).",
+        ),
         Error::Unencodable(_) => (
             ERRCODE_INVALID_PARAMETER_VALUE,
             "Use a larger max_error, or snap the geometry first with ST_SnapToGrid.",

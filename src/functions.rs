@@ -210,6 +210,16 @@ fn _ct_encode_within_wkb(
     Some(CircleTree::new(value))
 }
 
+/// The metrics stroke a value's arcs to a hundredth of its grid: refuse one whose stroke would
+/// exceed the decode limit before it is built.
+fn measurable(ct: &CircleTree) {
+    decode::check_size(
+        &ct.value,
+        circletree_core::metrics::measure_tolerance(&ct.value),
+    )
+    .or_raise();
+}
+
 fn original(wkb: &[u8]) -> Vec<circletree_core::geometry::Polygon> {
     circletree_core::wkb::read(wkb).or_raise().shape.parts
 }
@@ -218,6 +228,7 @@ fn original(wkb: &[u8]) -> Vec<circletree_core::geometry::Polygon> {
 /// 0.4.0's wrappers call this one; 0.5.0's pass the geometry's validity too.
 #[pg_extern(immutable, strict, parallel_safe)]
 fn _ct_sliver_error_wkb(ct: CircleTree, wkb: &[u8]) -> f64 {
+    measurable(&ct);
     circletree_core::metrics::value_sliver(&ct.value, &original(wkb))
 }
 
@@ -234,6 +245,7 @@ fn _ct_sliver_error_checked_wkb(
     if let Some(reason) = invalid_reason {
         crate::error::raise(circletree_core::Error::InvalidPolygon(reason.to_string()));
     }
+    measurable(&ct);
     Some(circletree_core::metrics::value_sliver(
         &ct.value,
         &original(wkb),
@@ -267,6 +279,7 @@ fn _ct_check_degrees(
 /// Continuous Hausdorff distance between the rebuilt boundary and a geometry's boundary (WKB).
 #[pg_extern(immutable, strict, parallel_safe)]
 fn _ct_hausdorff_wkb(ct: CircleTree, wkb: &[u8]) -> f64 {
+    measurable(&ct);
     circletree_core::metrics::value_hausdorff(&ct.value, &original(wkb), &mut interrupt)
 }
 

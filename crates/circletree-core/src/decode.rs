@@ -118,9 +118,63 @@ pub fn polygons(ct: &CircleTree, tol: f64) -> Vec<Polygon> {
         .collect()
 }
 
+/// The most points a decode may produce: 16 WKB bytes each, so the result stays below
+/// PostgreSQL's 1 GB limit for one value (and is refused before anything that size is built).
+pub const MAX_DECODED_POINTS: usize = 60_000_000;
+
+/// The number of points `polygons(ct, tol)` would produce, at most (its rings before repeated
+/// points are removed). Cheap when every circle stroked whole would stay under the limit;
+/// otherwise the arcs are measured.
+pub fn stroked_points(ct: &CircleTree, tol: f64) -> usize {
+    let circles = || ct.parts.iter().flatten().flatten();
+    let g = ct.grid_f64();
+    let whole: usize = circles()
+        .map(|c| {
+            1 + crate::reconstruct::arc_segments(
+                c.r.unsigned_abs() as f64 * g,
+                std::f64::consts::TAU,
+                tol,
+            )
+        })
+        .fold(0usize, usize::saturating_add);
+    if whole <= MAX_DECODED_POINTS {
+        return whole;
+    }
+    let mut n = 0usize;
+    for ring in ct.parts.iter().flatten() {
+        for seg in crate::reconstruct::ring_spans(&ring_circles(ct, ring))
+            .iter()
+            .flatten()
+        {
+            n = n.saturating_add(match *seg {
+                crate::reconstruct::Seg::Line(..) => 1,
+                crate::reconstruct::Seg::Arc { r, sweep, .. } => {
+                    crate::reconstruct::arc_segments(r, sweep, tol)
+                }
+            });
+        }
+    }
+    n
+}
+
+/// Refuse a decode that would produce more than [`MAX_DECODED_POINTS`] points.
+pub fn check_size(ct: &CircleTree, tol: f64) -> Result<()> {
+    let n = stroked_points(ct, tol);
+    if n > MAX_DECODED_POINTS {
+        return Err(Error::TooLarge(format!(
+            "decoding this value at arc tolerance {} would give {n} points, more than the {} \
+             (about 1 GB of geometry) one value can hold",
+            crate::error::number(tol),
+            MAX_DECODED_POINTS
+        )));
+    }
+    Ok(())
+}
+
 /// The rebuilt geometry as ISO WKB.
 pub fn to_wkb(ct: &CircleTree, tol: Option<f64>) -> Result<Vec<u8>> {
     let tol = arc_tolerance(ct, tol)?;
+    check_size(ct, tol)?;
     Ok(crate::wkb::write(ct.kind, &polygons(ct, tol)))
 }
 
@@ -243,5 +297,34 @@ mod tests {
         );
         assert!(arc_tolerance(&ct, Some(f64::NAN)).is_err());
         assert_eq!(arc_tolerance(&ct, None).unwrap(), 0.5);
+    }
+
+    #[test]
+    fn a_decode_beyond_a_value_s_limit_is_refused_before_it_is_built() {
+        // 30,000 parts, each one circle of radius 1,000,000: about 2,221 chords each at the grid
+        let disc = "(1000000 1000000 1000000)";
+        let parts = vec![format!("({disc})"); 30_000].join(",");
+        let ct = crate::text::from_text(&format!(
+            "CIRCLETREE(version=2;grid=1;min_radius=5;overlap=0.4;dp_tolerance=NULL;max_error=5;\
+             vertices=5;wkb_bytes=93;repaired=0;bbox=(0 0,2000000 2000000);MULTIPOLYGON({parts}))"
+        ))
+        .unwrap();
+        let n = stroked_points(&ct, 1.0);
+        assert!(n > MAX_DECODED_POINTS && n < 70_000_000, "{n}");
+        let err = to_wkb(&ct, None).unwrap_err();
+        assert!(matches!(err, Error::TooLarge(_)), "{err}");
+        assert!(err.to_string().contains("60000000"), "{err}");
+        // coarser, it decodes; the count bounds what is built
+        assert!(stroked_points(&ct, 10_000.0) < MAX_DECODED_POINTS);
+        let few = crate::text::from_text(&format!(
+            "CIRCLETREE(version=2;grid=1;min_radius=5;overlap=0.4;dp_tolerance=NULL;max_error=5;\
+             vertices=5;wkb_bytes=93;repaired=0;bbox=(0 0,2000000 2000000);MULTIPOLYGON(({disc})))"
+        ))
+        .unwrap();
+        let built: usize = polygons(&few, 1.0).iter().flatten().map(Vec::len).sum();
+        assert!(
+            built <= stroked_points(&few, 1.0) && built > 2000,
+            "{built}"
+        );
     }
 }

@@ -52,6 +52,9 @@ pub enum Error {
         /// 1-based character position in the input.
         position: usize,
     },
+    /// The result would exceed what PostgreSQL can hold in one value (SQLSTATE 54000).
+    #[error("{0}")]
+    TooLarge(String),
     /// The encoder could not produce a valid reconstruction within the error bound (SQLSTATE 22023).
     #[error("could not encode the polygon within max_error {0}")]
     Unencodable(String),

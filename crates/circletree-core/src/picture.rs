@@ -46,7 +46,9 @@ pub fn to_svg(
             range: format!("between {} and {} pixels", WIDTHS.0, WIDTHS.1),
         });
     }
-    let rebuilt = decode::polygons(ct, decode::arc_tolerance(ct, None)?);
+    let tol = decode::arc_tolerance(ct, None)?;
+    decode::check_size(ct, tol)?;
+    let rebuilt = decode::polygons(ct, tol);
     // the box of everything drawn: circles reach beyond the boundary
     let mut b = [
         f64::INFINITY,

@@ -22,3 +22,16 @@ SET ROLE ct_memory_user;
 SELECT outcome('SET circletree.max_encode_memory = ''64GB''') AS set_by_non_superuser;
 RESET ROLE;
 DROP ROLE ct_memory_user;
+-- Decoding is bounded by what one value can hold: a value of 30,000 discs of radius 1,000,000
+-- (text input, so anyone can send it) would stroke to about 67 million points at its grid, so
+-- ct_decode, ct_svg and the metrics refuse it with 54000 before building anything; coarser, it decodes.
+CREATE TEMP TABLE discs AS
+SELECT format('CIRCLETREE(version=2;grid=1;min_radius=5;overlap=0.4;dp_tolerance=NULL;max_error=5;vertices=5;wkb_bytes=93;repaired=0;bbox=(0 0,2000000 2000000);MULTIPOLYGON(%s))',
+              string_agg('((1000000 1000000 1000000))', ','))::circletree AS ct
+  FROM generate_series(1, 30000);
+SELECT ct_ncircles(ct) FROM discs;
+SELECT outcome('SELECT ct_decode(ct) FROM discs') AS ct_decode,
+       outcome('SELECT ct_svg(ct) FROM discs') AS ct_svg,
+       outcome('SELECT ct_hausdorff(ct, ''POLYGON((0 0,1 0,1 1,0 0))''::geometry) FROM discs') AS ct_hausdorff,
+       outcome('SELECT ct_sliver_error(ct, ''POLYGON((0 0,1 0,1 1,0 0))''::geometry) FROM discs') AS ct_sliver_error;
+SELECT ST_NPoints(ct_decode(ct, 100000)) FROM discs;

@@ -310,7 +310,17 @@ impl CircleTree {
         let vertices: u64 = r.take("the vertex count")?;
         let wkb_bytes: u64 = r.take("the WKB size")?;
         let repaired: u64 = r.take("the repaired count")?;
-        let nparts = r.count("parts", 5)?;
+        // Version 1 spends at least 5 bytes a part (two counts and a circle); version 2's coded
+        // stream can hold a part in well under a byte, and its reader bounds the count itself
+        // (`v2::read`: at most `MAX_CIRCLES_PER_BYTE` a byte). Releases up to 0.5.0 applied
+        // version 1's bound to both and so refused their own version-2 values of many small, alike
+        // parts: those values read now.
+        let nparts = if version == 1 {
+            r.count("parts", 5)?
+        } else {
+            let n: u64 = r.take("the part count")?;
+            usize::try_from(n).map_err(|_| Error::Corrupt(format!("the value claims {n} parts")))?
+        };
         let mut bbox = None;
         if nparts > 0 {
             let xmin: i64 = r.take("the bounding box")?;
@@ -501,6 +511,38 @@ mod tests {
             //   + nparts 1 + bbox 3 + 4 + 2 + 2 = 34; circles: deltas of a few bytes each
             assert!(b.len() < 60, "{} bytes", b.len());
         }
+    }
+
+    #[test]
+    fn many_small_alike_parts_read_back() {
+        // Version 2 codes a part in well under the 5 bytes version 1 needs: 20,000 alike squares
+        // (what ct_encode_within writes for a grid of parcels) must read back from their bytes.
+        let mut ct = sample_v(2);
+        ct.parts = (0..20_000i64)
+            .map(|i| {
+                let (x, y) = (1_000_000 + (i % 200) * 2, 12_000_000 + (i / 200) * 2);
+                vec![vec![
+                    Circle { x, y, r: 0 },
+                    Circle { x: x + 1, y, r: 0 },
+                    Circle {
+                        x: x + 1,
+                        y: y + 1,
+                        r: 0,
+                    },
+                ]]
+            })
+            .collect();
+        let b = ct.to_bytes();
+        assert!(b.len() < 5 * 20_000, "{} bytes", b.len());
+        assert_eq!(CircleTree::from_bytes(&b).unwrap(), ct);
+        assert_eq!(CircleTree::from_stored_bytes(&b).unwrap(), ct);
+        assert!(CircleTree::envelope(&b).is_ok());
+        // version 1 still bounds its count by the bytes left
+        ct.version = 1;
+        let mut b1 = ct.to_bytes();
+        assert_eq!(CircleTree::from_bytes(&b1).unwrap(), ct);
+        b1.truncate(60);
+        assert!(CircleTree::from_bytes(&b1).is_err());
     }
 
     #[test]
