@@ -1,6 +1,7 @@
 //! SQL functions over `circletree`: inspection and decoding. PostGIS-facing wrappers that take
 //! or return `geometry` are SQL functions in `lib.rs` over these WKB functions.
 
+use crate::datatype::memory::StoredBytes;
 use crate::datatype::CircleTree;
 use crate::error::OrRaise;
 use circletree_core::decode;
@@ -50,14 +51,16 @@ fn ct_ncircles(ct: CircleTree) -> i32 {
 
 /// The SRID the value was encoded with.
 #[pg_extern(immutable, strict, parallel_safe)]
-fn ct_srid(ct: CircleTree) -> i32 {
-    ct.value.srid
+fn ct_srid(ct: StoredBytes) -> i32 {
+    circletree_core::format::CircleTree::envelope(ct.0)
+        .or_raise()
+        .0
 }
 
 /// Bytes of the value in memory, varlena header included (as ST_MemSize).
 #[pg_extern(immutable, strict, parallel_safe)]
-fn ct_memsize(ct: CircleTree) -> i32 {
-    (ct.bytes.len() + pgrx::pg_sys::VARHDRSZ) as i32
+fn ct_memsize(ct: StoredBytes) -> i32 {
+    (ct.0.len() + pgrx::pg_sys::VARHDRSZ) as i32
 }
 
 /// Everything about a value in one JSON object.

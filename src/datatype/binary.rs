@@ -2,6 +2,7 @@
 //! Binary I/O (`circletree_send` / `circletree_recv`, our own bytes, not CBOR), the validated
 //! casts to and from `bytea`, and byte equality.
 
+use super::memory::StoredBytes;
 use super::CircleTree;
 use pgrx::datum::Internal;
 use pgrx::pg_sys;
@@ -9,8 +10,8 @@ use pgrx::prelude::*;
 
 /// `SEND`: the stored bytes as they are.
 #[pg_extern(immutable, strict, parallel_safe)]
-fn circletree_send(ct: CircleTree) -> Vec<u8> {
-    ct.bytes
+fn circletree_send(ct: StoredBytes) -> Vec<u8> {
+    ct.0.to_vec()
 }
 
 /// `RECEIVE`: read the message's remaining bytes and validate them fully.
@@ -40,20 +41,20 @@ fn circletree_from_bytea(bytes: &[u8]) -> CircleTree {
 
 /// `circletree -> bytea`: the stored bytes.
 #[pg_extern(immutable, strict, parallel_safe)]
-fn circletree_to_bytea(ct: CircleTree) -> Vec<u8> {
-    ct.bytes
+fn circletree_to_bytea(ct: StoredBytes) -> Vec<u8> {
+    ct.0.to_vec()
 }
 
 /// `=`: same bytes.
 #[pg_extern(immutable, strict, parallel_safe)]
-fn circletree_eq(a: CircleTree, b: CircleTree) -> bool {
-    a.bytes == b.bytes
+fn circletree_eq(a: StoredBytes, b: StoredBytes) -> bool {
+    a.0 == b.0
 }
 
 /// `<>`: different bytes.
 #[pg_extern(immutable, strict, parallel_safe)]
-fn circletree_ne(a: CircleTree, b: CircleTree) -> bool {
-    a.bytes != b.bytes
+fn circletree_ne(a: StoredBytes, b: StoredBytes) -> bool {
+    a.0 != b.0
 }
 
 extension_sql_file!(

@@ -86,3 +86,35 @@ where
         }
     }
 }
+
+/// A `circletree` argument as its detoasted stored bytes, neither decoded nor validated: for the
+/// functions that need only the bytes (`=`, `<>`, `::bytea`, `ct_memsize`) or the header
+/// (`ct_srid`). In SQL it is the same type as [`CircleTree`].
+pub struct StoredBytes<'fcx>(pub &'fcx [u8]);
+
+unsafe impl<'fcx> ArgAbi<'fcx> for StoredBytes<'fcx> {
+    unsafe fn unbox_arg_unchecked(arg: Arg<'_, 'fcx>) -> Self {
+        // SAFETY: a circletree datum is a plain varlena, as bytea's.
+        StoredBytes(unsafe { <&'fcx [u8] as ArgAbi<'fcx>>::unbox_arg_unchecked(arg) })
+    }
+
+    unsafe fn unbox_nullable_arg(arg: Arg<'_, 'fcx>) -> pgrx::nullable::Nullable<Self> {
+        match unsafe { <&'fcx [u8] as ArgAbi<'fcx>>::unbox_nullable_arg(arg) } {
+            pgrx::nullable::Nullable::Valid(b) => pgrx::nullable::Nullable::Valid(StoredBytes(b)),
+            _ => pgrx::nullable::Nullable::Null,
+        }
+    }
+}
+
+use pgrx::pgrx_sql_entity_graph::metadata::{
+    ArgumentError, ReturnsError, ReturnsRef, SqlMappingRef, SqlTranslatable, TypeOrigin,
+};
+
+unsafe impl SqlTranslatable for StoredBytes<'_> {
+    const TYPE_IDENT: &'static str = <CircleTree as SqlTranslatable>::TYPE_IDENT;
+    const TYPE_ORIGIN: TypeOrigin = <CircleTree as SqlTranslatable>::TYPE_ORIGIN;
+    const ARGUMENT_SQL: Result<SqlMappingRef, ArgumentError> =
+        <CircleTree as SqlTranslatable>::ARGUMENT_SQL;
+    const RETURN_SQL: Result<ReturnsRef, ReturnsError> =
+        <CircleTree as SqlTranslatable>::RETURN_SQL;
+}

@@ -196,14 +196,21 @@ pub fn arc_segments(r: f64, sweep: f64, tol: f64) -> usize {
     (k.max(quarter) as usize).clamp(1, MAX_ARC_SEGMENTS)
 }
 
-/// Stroke spans into ring points (open ring), recording for each point its span.
-pub fn stroke_spans(spans: &Spans, tol: f64, pts: &mut Vec<Pt>, span_of: &mut Vec<u32>) {
+/// Stroke spans into ring points (open ring), recording for each point its span when asked.
+pub fn stroke_spans(
+    spans: &Spans,
+    tol: f64,
+    pts: &mut Vec<Pt>,
+    mut span_of: Option<&mut Vec<u32>>,
+) {
     for (i, span) in spans.iter().enumerate() {
         for seg in span {
             match *seg {
                 Seg::Line(a, _) => {
                     pts.push(a);
-                    span_of.push(i as u32);
+                    if let Some(ids) = span_of.as_deref_mut() {
+                        ids.push(i as u32);
+                    }
                 }
                 Seg::Arc {
                     c,
@@ -215,11 +222,15 @@ pub fn stroke_spans(spans: &Spans, tol: f64, pts: &mut Vec<Pt>, span_of: &mut Ve
                 } => {
                     let k = arc_segments(r, sweep, tol);
                     pts.push(from);
-                    span_of.push(i as u32);
+                    if let Some(ids) = span_of.as_deref_mut() {
+                        ids.push(i as u32);
+                    }
                     for j in 1..k {
                         let t = a0 + sweep * (j as f64) / (k as f64);
                         pts.push([c[0] + r * t.cos(), c[1] + r * t.sin()]);
-                        span_of.push(i as u32);
+                        if let Some(ids) = span_of.as_deref_mut() {
+                            ids.push(i as u32);
+                        }
                     }
                 }
             }
@@ -231,8 +242,7 @@ pub fn stroke_spans(spans: &Spans, tol: f64, pts: &mut Vec<Pt>, span_of: &mut Ve
 pub fn stroke_ring(circles: &[[f64; 3]], tol: f64) -> Vec<Pt> {
     let spans = ring_spans(circles);
     let mut pts = Vec::new();
-    let mut ids = Vec::new();
-    stroke_spans(&spans, tol, &mut pts, &mut ids);
+    stroke_spans(&spans, tol, &mut pts, None);
     pts.dedup();
     while pts.len() > 1 && pts.first() == pts.last() {
         pts.pop();

@@ -192,7 +192,7 @@ fn dirty_spans(entries: &[Entry]) -> Vec<bool> {
 /// Stroke spans and drop repeated points, as the decoder does, keeping each point's span.
 fn stroke_dedup(spans: &crate::reconstruct::Spans, tol: f64) -> (Vec<Pt>, Vec<u32>) {
     let (mut pts, mut ids) = (Vec::new(), Vec::new());
-    stroke_spans(spans, tol, &mut pts, &mut ids);
+    stroke_spans(spans, tol, &mut pts, Some(&mut ids));
     let mut rp: Vec<Pt> = Vec::with_capacity(pts.len());
     let mut ri: Vec<u32> = Vec::with_capacity(pts.len());
     for (p, id) in pts.into_iter().zip(ids) {
