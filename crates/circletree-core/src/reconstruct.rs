@@ -204,14 +204,10 @@ pub fn stroke_spans(
     mut span_of: Option<&mut Vec<u32>>,
 ) {
     for (i, span) in spans.iter().enumerate() {
+        let start = pts.len();
         for seg in span {
             match *seg {
-                Seg::Line(a, _) => {
-                    pts.push(a);
-                    if let Some(ids) = span_of.as_deref_mut() {
-                        ids.push(i as u32);
-                    }
-                }
+                Seg::Line(a, _) => pts.push(a),
                 Seg::Arc {
                     c,
                     r,
@@ -222,18 +218,15 @@ pub fn stroke_spans(
                 } => {
                     let k = arc_segments(r, sweep, tol);
                     pts.push(from);
-                    if let Some(ids) = span_of.as_deref_mut() {
-                        ids.push(i as u32);
-                    }
                     for j in 1..k {
                         let t = a0 + sweep * (j as f64) / (k as f64);
                         pts.push([c[0] + r * t.cos(), c[1] + r * t.sin()]);
-                        if let Some(ids) = span_of.as_deref_mut() {
-                            ids.push(i as u32);
-                        }
                     }
                 }
             }
+        }
+        if let Some(ids) = span_of.as_deref_mut() {
+            ids.resize(ids.len() + pts.len() - start, i as u32);
         }
     }
 }

@@ -157,6 +157,11 @@ pub fn to_geo(parts: &[Polygon]) -> geo::MultiPolygon<f64> {
     geo::MultiPolygon(parts.iter().map(|p| to_geo_polygon(p)).collect())
 }
 
+/// Points a ring is written with: closed, unless it is empty.
+fn closed_len(r: &Ring) -> usize {
+    r.len() + usize::from(!r.is_empty())
+}
+
 /// The rings a polygon is written with: none when its shell is empty.
 fn poly_rings(p: &Polygon) -> &[Ring] {
     match p.first() {
@@ -170,7 +175,7 @@ fn poly_rings(p: &Polygon) -> &[Ring] {
 /// buffer of the final size, with no `geo` copy on the way (this is every `ct_decode`'s
 /// output); the `wkb` crate's writer is the reference it is tested against.
 pub fn write(kind: Kind, parts: &[Polygon]) -> Vec<u8> {
-    let ring_bytes = |r: &Ring| 4 + 16 * (r.len() + usize::from(!r.is_empty()));
+    let ring_bytes = |r: &Ring| 4 + 16 * closed_len(r);
     let poly_bytes = |p: &Polygon| 9 + poly_rings(p).iter().map(ring_bytes).sum::<usize>();
     let size = match kind {
         Kind::Polygon => parts.first().map_or(9, poly_bytes),
@@ -186,7 +191,7 @@ pub fn write(kind: Kind, parts: &[Polygon]) -> Vec<u8> {
         let rings = poly_rings(p);
         head(out, 3, rings.len());
         for r in rings {
-            out.extend_from_slice(&((r.len() + usize::from(!r.is_empty())) as u32).to_le_bytes());
+            out.extend_from_slice(&(closed_len(r) as u32).to_le_bytes());
             for q in r.iter().chain(r.first()) {
                 out.extend_from_slice(&q[0].to_le_bytes());
                 out.extend_from_slice(&q[1].to_le_bytes());
