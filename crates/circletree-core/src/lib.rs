@@ -8,6 +8,7 @@
 #![forbid(unsafe_code)]
 
 pub mod arcs;
+pub mod box_grid;
 pub mod coder;
 pub mod decimal;
 pub mod decode;

@@ -76,8 +76,56 @@ impl Seg {
 /// Most segments one arc is stroked into.
 pub const MAX_ARC_SEGMENTS: usize = 4096;
 
+/// One span: the join at a circle (its arc or a short line to a corner, when there is one), then
+/// the tangent to the next circle. At most two pieces, held inline (a ring of a million spans
+/// makes no allocation per span).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Span {
+    segs: [Seg; 2],
+    len: u8,
+}
+
+impl Span {
+    fn one(tangent: Seg) -> Span {
+        Span {
+            segs: [tangent, tangent],
+            len: 1,
+        }
+    }
+
+    fn two(join: Seg, tangent: Seg) -> Span {
+        Span {
+            segs: [join, tangent],
+            len: 2,
+        }
+    }
+}
+
+impl std::ops::Deref for Span {
+    type Target = [Seg];
+    fn deref(&self) -> &[Seg] {
+        &self.segs[..self.len as usize]
+    }
+}
+
+impl<'a> IntoIterator for &'a Span {
+    type Item = &'a Seg;
+    type IntoIter = std::slice::Iter<'a, Seg>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.iter()
+    }
+}
+
+impl IntoIterator for Span {
+    type Item = Seg;
+    type IntoIter = std::iter::Take<std::array::IntoIter<Seg, 2>>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.segs.into_iter().take(self.len as usize)
+    }
+}
+
 /// A rebuilt ring, as spans: span `i` is the join at circle `i` then the tangent to circle `i+1`.
-pub type Spans = Vec<Vec<Seg>>;
+pub type Spans = Vec<Span>;
 
 /// Tangent from circle A to circle B: start point on A, end point on B, unit direction.
 pub fn tangent(ca: Pt, ra: f64, cb: Pt, rb: f64) -> (Pt, Pt, Pt) {
@@ -115,23 +163,30 @@ pub fn ring_spans(circles: &[[f64; 3]]) -> Spans {
     if m == 1 {
         let [x, y, r] = circles[0];
         if r == 0.0 {
-            return vec![vec![Seg::Line([x, y], [x, y])]];
+            return vec![Span::one(Seg::Line([x, y], [x, y]))];
         }
         let p = [x + r.abs(), y];
-        return vec![vec![Seg::Arc {
+        return vec![Span::one(Seg::Arc {
             c: [x, y],
             r: r.abs(),
             a0: 0.0,
             sweep: TAU * r.signum(),
             from: p,
             to: p,
-        }]];
+        })];
     }
     let tans: Vec<(Pt, Pt, Pt)> = (0..m)
         .map(|i| {
             let a = circles[i];
             let b = circles[(i + 1) % m];
-            tangent([a[0], a[1]], a[2], [b[0], b[1]], b[2])
+            if a[2] == 0.0 && b[2] == 0.0 {
+                // From point to point: the tangent is the segment between them (what `tangent`
+                // gives, to the bit). Its direction is read only at a circle with a radius, never
+                // at these two ends.
+                ([a[0], a[1]], [b[0], b[1]], [f64::NAN; 2])
+            } else {
+                tangent([a[0], a[1]], a[2], [b[0], b[1]], b[2])
+            }
         })
         .collect();
     // Join at circle i: (point where the incoming tangent ends, point where the outgoing starts, arc)
@@ -172,14 +227,14 @@ pub fn ring_spans(circles: &[[f64; 3]]) -> Spans {
     }
     (0..m)
         .map(|i| {
-            let mut span = Vec::with_capacity(2);
+            let tangent = Seg::Line(p_out[i], p_in[(i + 1) % m]);
             if let Some(a) = arcs[i] {
-                span.push(a);
+                Span::two(a, tangent)
             } else if p_in[i] != p_out[i] {
-                span.push(Seg::Line(p_in[i], p_out[i]));
+                Span::two(Seg::Line(p_in[i], p_out[i]), tangent)
+            } else {
+                Span::one(tangent)
             }
-            span.push(Seg::Line(p_out[i], p_in[(i + 1) % m]));
-            span
         })
         .collect()
 }

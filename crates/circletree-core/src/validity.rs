@@ -4,9 +4,10 @@
 //! inside its shell and no part's shell inside another part. Two *different* rings may touch at
 //! isolated points, but only at the points the caller allows (the encoder allows exactly the touch
 //! points of the input, kept as shared vertices, so the interior stays connected as it was), only
-//! vertex to vertex, and without crossing there. Segment pairs are found with an R-tree:
-//! O(n log n). [`crate::arcs`] checks the true arcs between the stroked points.
+//! vertex to vertex, and without crossing there. Segment pairs are found with a uniform grid
+//! ([`crate::box_grid`]; an R-tree when the segments are spread too unevenly for one). [`crate::arcs`] checks the true arcs between the stroked points.
 
+use crate::box_grid::BoxGrid;
 use crate::geometry::{signed_area, Pt};
 use robust::{orient2d, Coord};
 use rstar::primitives::{GeomWithData, Rectangle};
@@ -146,6 +147,47 @@ impl MayMeet for Option<NearHot> {
     }
 }
 
+/// The changed segments, by `(ring, segment)`, looked up by envelope: a [`BoxGrid`] (measured
+/// several times faster than the R-tree on boundaries, whose segments are short and even) unless
+/// the segments are spread too unevenly for one, then an R-tree. Either reports the same set.
+enum HotIndex {
+    Grid(BoxGrid, Vec<(usize, usize)>),
+    Tree(RTree<GeomWithData<Rectangle<Pt>, (usize, usize)>>),
+}
+
+impl HotIndex {
+    fn new(hot: Vec<GeomWithData<Rectangle<Pt>, (usize, usize)>>) -> HotIndex {
+        let bbox = |g: &GeomWithData<Rectangle<Pt>, (usize, usize)>| {
+            let e = g.envelope();
+            [e.lower()[0], e.lower()[1], e.upper()[0], e.upper()[1]]
+        };
+        match BoxGrid::new(hot.iter().map(bbox).collect()) {
+            Some(grid) => HotIndex::Grid(grid, hot.iter().map(|g| g.data).collect()),
+            None => HotIndex::Tree(RTree::bulk_load(hot)),
+        }
+    }
+
+    /// Calls `f` once with every changed segment whose envelope meets `env`.
+    fn for_each_meeting(&self, env: &rstar::AABB<Pt>, mut f: impl FnMut((usize, usize))) {
+        match self {
+            HotIndex::Grid(grid, ids) => {
+                let q = [
+                    env.lower()[0],
+                    env.lower()[1],
+                    env.upper()[0],
+                    env.upper()[1],
+                ];
+                grid.for_each_meeting(&q, |i| f(ids[i]));
+            }
+            HotIndex::Tree(tree) => {
+                for other in tree.locate_in_envelope_intersecting(env) {
+                    f(other.data);
+                }
+            }
+        }
+    }
+}
+
 /// Problems found: `(ring index in the input slice, segment index)`; `usize::MAX` as the segment
 /// means the whole ring (degenerate, or misplaced).
 pub fn problems(rings: &[RingRef], interrupt: &mut dyn FnMut()) -> Vec<(usize, usize)> {
@@ -220,7 +262,7 @@ pub fn problems_where(
         .cloned()
         .collect();
     let near = NearHot::new(&hot, items.len());
-    let tree = RTree::bulk_load(hot);
+    let index = HotIndex::new(hot);
     for (count, item) in items.iter().enumerate() {
         if count % 8192 == 0 {
             interrupt();
@@ -233,10 +275,9 @@ pub fn problems_where(
         let pts = rings[k].pts;
         let n = pts.len();
         let (a, b) = (pts[i], pts[(i + 1) % n]);
-        for other in tree.locate_in_envelope_intersecting(&item.geom().envelope()) {
-            let (k2, j) = other.data;
+        index.for_each_meeting(&item.envelope(), |(k2, j)| {
             if item_changed && (k2, j) <= (k, i) {
-                continue;
+                return;
             }
             let p2 = rings[k2].pts;
             let n2 = p2.len();
@@ -257,10 +298,10 @@ pub fn problems_where(
                         bad.push((k2, j));
                     }
                 }
-                continue;
+                return;
             }
             if !segments_touch(a, b, c, d) {
-                continue;
+                return;
             }
             if k != k2 {
                 // Different rings: a touch at one shared, allowed vertex is fine (whether they
@@ -279,13 +320,13 @@ pub fn problems_where(
                         && (x[0] - p[0]) * (y[0] - p[0]) + (x[1] - p[1]) * (y[1] - p[1]) > 0.0;
                     if !overlap && allowed.contains(&touch_key(p)) {
                         touches.insert((k, vi, k2, vj));
-                        continue;
+                        return;
                     }
                 }
             }
             bad.push((k, i));
             bad.push((k2, j));
-        }
+        });
     }
     for &(k, vi, k2, vj) in &touches {
         let (pa, pb) = (rings[k].pts, rings[k2].pts);

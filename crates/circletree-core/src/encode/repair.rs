@@ -139,9 +139,45 @@ impl RingState {
             .map(|(_, s)| s)
     }
 
+    /// A sufficient test for a straight span (both circles zero-radius, one stroked segment
+    /// `A-B`) against that segment and its own original chain alone, with no search: the chain's
+    /// vertices `v_a ..= v_b` within `target` of `A-B` put the whole chain there (distance to a
+    /// segment is convex along each edge); and with `|v_a − A|` and `|v_b − B|` within `target`
+    /// and the chain running from `v_a` to `v_b` forward along `A-B`, every point of `A-B` is
+    /// within `target` of the chain (between the projections of `v_a` and `v_b` the chain passes
+    /// over each point at no more than its largest distance from the line, and beyond them the
+    /// nearer end is within its distance to `A` or `B`). Measuring against a subset can only
+    /// overestimate, so a pass here is a pass of the window test; `false` means "not proved
+    /// here", and the window test decides.
+    fn straight_span_fits(&self, s: usize, target: f64) -> bool {
+        let (n, m) = (self.pts.len(), self.m());
+        if m < 2
+            || self.entries[s].r != 0.0
+            || self.entries[(s + 1) % m].r != 0.0
+            || self.starts[s + 1] != self.starts[s] + 1
+        {
+            return false;
+        }
+        let (a, b) = self.recon_seg(self.starts[s]);
+        let d = [b[0] - a[0], b[1] - a[1]];
+        let len2 = d[0] * d[0] + d[1] * d[1];
+        let edges = self.orig_edges(s);
+        let (first, last) = (self.pts[edges.start % n], self.pts[edges.end % n]);
+        let t2 = target * target;
+        let along = |p: Pt| (p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1];
+        if len2 == 0.0 || dist2(first, a) > t2 || dist2(last, b) > t2 || along(first) > along(last)
+        {
+            return false;
+        }
+        (edges.start..=edges.end).all(|v| dist2_to_segment(self.pts[v % n], a, b) <= t2)
+    }
+
     /// Does every point of span `s`, and of the original edges it stands for, lie within
     /// `target` of the other boundary (measured on the windows)?
     fn span_fits(&self, s: usize, target: f64, eps: f64) -> bool {
+        if self.straight_span_fits(s, target) {
+            return true;
+        }
         let recon = self.window_recon(s);
         let own_orig = self.orig_edges(s).map(|v| self.orig_seg(v));
         if !all_within(&recon, own_orig, target, eps) {
@@ -151,6 +187,11 @@ impl RingState {
         let own_recon = (self.starts[s]..self.starts[s + 1]).map(|i| self.recon_seg(i));
         all_within(&orig, own_recon, target, eps)
     }
+}
+
+/// Squared distance between two points.
+fn dist2(p: Pt, q: Pt) -> f64 {
+    (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)
 }
 
 /// Is every segment of `from` within `target` (to `eps`) of the segments `to`?
