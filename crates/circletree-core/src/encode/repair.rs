@@ -266,18 +266,16 @@ pub(super) struct Context<'a> {
     pub(super) circles: bool,
 }
 
-/// One grid: start every ring from its plan, then repair until nothing fails.
-pub(super) fn verify_and_repair(
+/// Every ring as its plan starts it on one grid, before any check.
+pub(super) fn initial_rings(
     ctx: &Context,
     opts: &Options,
     max_error: f64,
     grid: Grid,
     interrupt: &mut dyn FnMut(),
     report: &mut Report,
-) -> Result<Outcome> {
+) -> Vec<RingState> {
     let shape = ctx.shape;
-    let g = grid.step_f64();
-    let target = max_error - g;
     let mut rings: Vec<RingState> = Vec::new();
     report.filtered_circles = 0;
     report.dp_points = 0;
@@ -308,7 +306,45 @@ pub(super) fn verify_and_repair(
             });
         }
     }
-    let q = |v: f64| grid.quantize(v);
+    rings
+}
+
+/// The circles of each ring as stored on `grid` (each part's rings in order), before any check:
+/// what a plan would cost if nothing needed repair.
+pub(super) fn unchecked_parts(
+    rings: &[RingState],
+    nparts: usize,
+    grid: Grid,
+) -> Vec<Vec<Vec<Circle>>> {
+    let mut parts: Vec<Vec<Vec<Circle>>> = vec![Vec::new(); nparts];
+    for st in rings {
+        parts[st.part].push(quantized(&st.entries, grid));
+    }
+    parts
+}
+
+fn quantized(entries: &[Entry], grid: Grid) -> Vec<Circle> {
+    entries
+        .iter()
+        .map(|e| Circle {
+            x: grid.quantize(e.c[0]),
+            y: grid.quantize(e.c[1]),
+            r: grid.quantize(e.r),
+        })
+        .collect()
+}
+
+/// Repair `rings` (as [`initial_rings`] gave them on `grid`) until nothing fails.
+pub(super) fn verify_and_repair(
+    ctx: &Context,
+    mut rings: Vec<RingState>,
+    max_error: f64,
+    grid: Grid,
+    interrupt: &mut dyn FnMut(),
+    report: &mut Report,
+) -> Result<Outcome> {
+    let g = grid.step_f64();
+    let target = max_error - g;
     let unq = |k: i64| grid.coord(k);
     let mut round = 0;
     loop {
@@ -324,15 +360,7 @@ pub(super) fn verify_and_repair(
             for e in &mut st.entries {
                 e.touched = false;
             }
-            st.circles = st
-                .entries
-                .iter()
-                .map(|e| Circle {
-                    x: q(e.c[0]),
-                    y: q(e.c[1]),
-                    r: q(e.r),
-                })
-                .collect();
+            st.circles = quantized(&st.entries, grid);
             let fc: Vec<[f64; 3]> = st
                 .circles
                 .iter()
