@@ -99,9 +99,12 @@ fn chain(
             if !wedge.add(p(j - 1)) {
                 break;
             }
-            if next < hops[j] && wedge.allows(stored[j]) && wedge.fits(ring, a, i, j, stored[j]) {
-                hops[j] = next;
-                from[j] = i;
+            if next < hops[j] {
+                let (allowed, len) = wedge.allows(stored[j]);
+                if allowed && wedge.fits(ring, a, i, j, stored[j], len) {
+                    hops[j] = next;
+                    from[j] = i;
+                }
             }
         }
     }
@@ -116,15 +119,26 @@ fn chain(
 }
 
 /// Directions from `origin` along which a line passes within `tol` of every vertex added so far:
-/// an interval of angles, kept relative to the first direction that constrained it.
+/// an arc of directions narrower than a half turn, held as its two boundary vectors (`lo` then
+/// `hi`, counter-clockwise), so that every test is a cross product and no angle is computed.
+/// Within a half turn, `d` lies in the arc exactly when `lo × d ≥ 0` and `d × hi ≥ 0`.
 struct Wedge {
     origin: Pt,
     tol: f64,
-    /// (reference angle, low, high) relative to the reference; `None` until constrained.
-    range: Option<(f64, f64, f64)>,
+    /// `(lo, hi)`; `None` until constrained.
+    range: Option<(Pt, Pt)>,
     /// Farthest vertex added, from `origin`: when a shortcut is shorter, a vertex may lie beyond
     /// its end, where the line test says nothing, and the vertices are measured exactly.
     farthest: f64,
+}
+
+fn cross(a: Pt, b: Pt) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+
+/// Is direction `d` within the arc from `lo` to `hi` (narrower than a half turn)?
+fn within(lo: Pt, hi: Pt, d: Pt) -> bool {
+    cross(lo, d) >= 0.0 && cross(d, hi) >= 0.0
 }
 
 impl Wedge {
@@ -137,70 +151,77 @@ impl Wedge {
         }
     }
 
-    fn polar(&self, q: Pt) -> (f64, f64) {
-        let (dx, dy) = (q[0] - self.origin[0], q[1] - self.origin[1]);
-        (dx.hypot(dy), dy.atan2(dx))
+    fn rel(&self, q: Pt) -> (Pt, f64) {
+        let d = [q[0] - self.origin[0], q[1] - self.origin[1]];
+        (d, (d[0] * d[0] + d[1] * d[1]).sqrt())
     }
 
     /// Narrow the wedge to lines passing within `tol` of `q` (on its side of the origin).
     /// `false` when no direction is left.
     fn add(&mut self, q: Pt) -> bool {
-        let (r, phi) = self.polar(q);
+        let (d, r) = self.rel(q);
         self.farthest = self.farthest.max(r);
         if r <= self.tol {
             return true;
         }
-        let half = (self.tol / r).asin();
+        // the arc of directions within asin(tol / r) of d, by its two boundaries (d turned by
+        // that angle either way, scaled by r)
+        let s = self.tol / r;
+        let c = (1.0 - s * s).sqrt();
+        let a = [c * d[0] + s * d[1], c * d[1] - s * d[0]];
+        let b = [c * d[0] - s * d[1], c * d[1] + s * d[0]];
         match self.range {
             None => {
-                self.range = Some((phi, -half, half));
+                self.range = Some((a, b));
                 true
             }
-            Some((reference, lo, hi)) => {
-                let c = wrap(phi - reference);
-                let (lo, hi) = (lo.max(c - half), hi.min(c + half));
-                self.range = Some((reference, lo, hi));
-                lo <= hi
+            Some((lo, hi)) => {
+                // two arcs narrower than a half turn meet in one arc or none: it starts at the
+                // later start and ends at the earlier end
+                let start = if within(lo, hi, a) {
+                    a
+                } else if within(a, b, lo) {
+                    lo
+                } else {
+                    return false;
+                };
+                let end = if within(lo, hi, b) {
+                    b
+                } else if within(a, b, hi) {
+                    hi
+                } else {
+                    return false;
+                };
+                if cross(start, end) < 0.0 {
+                    return false;
+                }
+                self.range = Some((start, end));
+                true
             }
         }
     }
 
-    /// Does the direction to `q` lie within the wedge?
-    fn allows(&self, q: Pt) -> bool {
-        let (r, phi) = self.polar(q);
-        match self.range {
+    /// Does the direction to `q` lie within the wedge? Also its distance from the origin.
+    fn allows(&self, q: Pt) -> (bool, f64) {
+        let (d, r) = self.rel(q);
+        let ok = match self.range {
             None => true,
             Some(_) if r == 0.0 => false,
-            Some((reference, lo, hi)) => {
-                let c = wrap(phi - reference);
-                lo <= c && c <= hi
-            }
-        }
+            Some((lo, hi)) => within(lo, hi, d),
+        };
+        (ok, r)
     }
 
     /// Exact check of the shortcut `i..j` of the chain starting at ring index `a`, from the origin
-    /// to `pj`, when a vertex may lie beyond its end (else the wedge has already proved it).
-    fn fits(&self, ring: &[Pt], a: usize, i: usize, j: usize, pj: Pt) -> bool {
+    /// to `pj` at distance `len`, when a vertex may lie beyond its end (else the wedge has already
+    /// proved it).
+    fn fits(&self, ring: &[Pt], a: usize, i: usize, j: usize, pj: Pt, len: f64) -> bool {
         let n = ring.len();
-        let pi = self.origin;
-        let (len, _) = self.polar(pj);
         if self.farthest <= len {
             return true;
         }
-        (i + 1..j).all(|k| dist_to_segment(ring[(a + k) % n], pi, pj) <= self.tol)
+        (i + 1..j).all(|k| dist_to_segment(ring[(a + k) % n], self.origin, pj) <= self.tol)
     }
-}
-
-/// An angle in (-π, π].
-fn wrap(a: f64) -> f64 {
-    use std::f64::consts::PI;
-    let mut a = a % (2.0 * PI);
-    if a > PI {
-        a -= 2.0 * PI;
-    } else if a <= -PI {
-        a += 2.0 * PI;
-    }
-    a
 }
 
 #[cfg(test)]
