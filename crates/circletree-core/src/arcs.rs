@@ -13,10 +13,9 @@
 //! its whole ring (the last test). Ends of pieces closer than `eps` count as meeting, so floating
 //! point rounding can only make the check stricter, never let a touch through.
 
+use crate::box_grid::{Bbox, BoxIndex};
 use crate::geometry::{dist2_to_segment, Pt};
 use crate::reconstruct::{arc_segments, Seg, Spans};
-use rstar::primitives::{GeomWithData, Rectangle};
-use rstar::{RTree, RTreeObject, AABB};
 use std::f64::consts::TAU;
 
 /// A ring's rebuilt pieces: its part, its index in the part, its spans, and whether each span
@@ -65,7 +64,7 @@ fn arc_box(c: Pt, r: f64, a0: f64, sweep: f64, from: Pt, to: Pt) -> [f64; 4] {
     b
 }
 
-fn piece_box(seg: &Seg, pad: f64) -> Rectangle<Pt> {
+fn piece_box(seg: &Seg, pad: f64) -> Bbox {
     let b = match *seg {
         Seg::Line(a, b) => [
             a[0].min(b[0]),
@@ -82,7 +81,7 @@ fn piece_box(seg: &Seg, pad: f64) -> Rectangle<Pt> {
             to,
         } => arc_box(c, r, a0, sweep, from, to),
     };
-    Rectangle::from_corners([b[0] - pad, b[1] - pad], [b[2] + pad, b[3] + pad])
+    [b[0] - pad, b[1] - pad, b[2] + pad, b[3] + pad]
 }
 
 /// Is angle `t` on the arc starting at `a0` sweeping `sweep` (signed), to `tol` radians?
@@ -242,11 +241,11 @@ pub fn problems(
         return vec![];
     }
     interrupt();
-    let tree = RTree::bulk_load(
+    let tree = BoxIndex::new(
         pieces
             .iter()
             .flatten()
-            .map(|p| GeomWithData::new(piece_box(&p.seg, eps), (p.ring, p.pos)))
+            .map(|p| (piece_box(&p.seg, eps), (p.ring, p.pos)))
             .collect(),
     );
     let dirty = |p: &Piece| {
@@ -262,11 +261,15 @@ pub fn problems(
         if !dirty(p) {
             continue;
         }
-        for other in tree.locate_in_envelope_intersecting(&piece_box(&p.seg, eps).envelope()) {
-            let (k2, pos2) = other.data;
+        let p_line = matches!(p.seg, Seg::Line(..));
+        tree.for_each_meeting(&piece_box(&p.seg, eps), |(k2, pos2)| {
             let q = &pieces[k2][pos2];
-            if (k2, pos2) == (p.ring, p.pos) || (dirty(q) && (k2, pos2) < (p.ring, p.pos)) {
-                continue;
+            if (p_line && matches!(q.seg, Seg::Line(..)))
+                || (k2, pos2) == (p.ring, p.pos)
+                || (dirty(q) && (k2, pos2) < (p.ring, p.pos))
+            {
+                // two lines: the stroke check's (`meet` says nothing of them)
+                return;
             }
             let mut joints = Vec::new();
             if k2 == p.ring {
@@ -282,15 +285,14 @@ pub fn problems(
                 bad.push((p.ring, p.span));
                 bad.push((k2, q.span));
             }
-        }
+        });
     }
     // A ring inside the sliver between an arc of another ring and that arc's chords.
     for (k, probe) in probes.iter().enumerate() {
-        let b = AABB::from_point(*probe);
-        for other in tree.locate_in_envelope_intersecting(&b) {
-            let (k2, pos2) = other.data;
+        let b = [probe[0], probe[1], probe[0], probe[1]];
+        tree.for_each_meeting(&b, |(k2, pos2)| {
             if k2 == k {
-                continue;
+                return;
             }
             if let Seg::Arc {
                 c, r, a0, sweep, ..
@@ -301,7 +303,7 @@ pub fn problems(
                     bad.push((k2, pieces[k2][pos2].span));
                 }
             }
-        }
+        });
     }
     bad
 }

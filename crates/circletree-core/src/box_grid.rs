@@ -9,6 +9,9 @@
 //! (a few long edges across a large extent) would fill many cells each: [`BoxGrid::new`] then
 //! returns `None` and the caller keeps its tree.
 
+use rstar::primitives::{GeomWithData, Rectangle};
+use rstar::{RTree, AABB};
+
 /// A box: `[xmin, ymin, xmax, ymax]`.
 pub type Bbox = [f64; 4];
 
@@ -154,6 +157,45 @@ impl BoxGrid {
     }
 }
 
+/// Boxes with data, looked up by box: a [`BoxGrid`] when the boxes suit one, else `rstar`'s
+/// R-tree. Either reports the same set.
+pub enum BoxIndex<T> {
+    /// The grid and each box's data.
+    Grid(BoxGrid, Vec<T>),
+    /// The fallback.
+    Tree(RTree<GeomWithData<Rectangle<[f64; 2]>, T>>),
+}
+
+impl<T: Copy> BoxIndex<T> {
+    /// An index of `items`.
+    pub fn new(items: Vec<(Bbox, T)>) -> BoxIndex<T> {
+        match BoxGrid::new(items.iter().map(|i| i.0).collect()) {
+            Some(grid) => BoxIndex::Grid(grid, items.into_iter().map(|i| i.1).collect()),
+            None => BoxIndex::Tree(RTree::bulk_load(
+                items
+                    .into_iter()
+                    .map(|(b, t)| {
+                        GeomWithData::new(Rectangle::from_corners([b[0], b[1]], [b[2], b[3]]), t)
+                    })
+                    .collect(),
+            )),
+        }
+    }
+
+    /// Calls `f` once with the data of every box that meets `q` (closed boxes).
+    pub fn for_each_meeting(&self, q: &Bbox, mut f: impl FnMut(T)) {
+        match self {
+            BoxIndex::Grid(grid, data) => grid.for_each_meeting(q, |i| f(data[i])),
+            BoxIndex::Tree(tree) => {
+                let env = AABB::from_corners([q[0], q[1]], [q[2], q[3]]);
+                for item in tree.locate_in_envelope_intersecting(&env) {
+                    f(item.data);
+                }
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -213,6 +255,43 @@ mod tests {
             pairs > 3 * boxes.len(),
             "{pairs} pairs: the test has to meet neighbours"
         );
+    }
+
+    /// The tree fallback reports what the grid reports.
+    #[test]
+    fn both_indexes_agree() {
+        let boxes: Vec<(Bbox, usize)> = (0..500)
+            .map(|i| {
+                let t = i as f64 * 0.05;
+                (
+                    [
+                        t.cos() * 100.0,
+                        t.sin() * 100.0,
+                        t.cos() * 100.0 + 3.0,
+                        t.sin() * 100.0 + 2.0,
+                    ],
+                    i,
+                )
+            })
+            .collect();
+        let grid = BoxIndex::new(boxes.clone());
+        assert!(matches!(grid, BoxIndex::Grid(..)));
+        let tree = BoxIndex::Tree(RTree::bulk_load(
+            boxes
+                .iter()
+                .map(|&(b, t)| {
+                    GeomWithData::new(Rectangle::from_corners([b[0], b[1]], [b[2], b[3]]), t)
+                })
+                .collect(),
+        ));
+        for (q, _) in &boxes {
+            let (mut a, mut b) = (Vec::new(), Vec::new());
+            grid.for_each_meeting(q, |i| a.push(i));
+            tree.for_each_meeting(q, |i| b.push(i));
+            a.sort_unstable();
+            b.sort_unstable();
+            assert_eq!(a, b);
+        }
     }
 
     #[test]

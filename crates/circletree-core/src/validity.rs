@@ -7,11 +7,11 @@
 //! vertex to vertex, and without crossing there. Segment pairs are found with a uniform grid
 //! ([`crate::box_grid`]; an R-tree when the segments are spread too unevenly for one). [`crate::arcs`] checks the true arcs between the stroked points.
 
-use crate::box_grid::BoxGrid;
+use crate::box_grid::{Bbox, BoxIndex};
 use crate::geometry::{signed_area, Pt};
 use robust::{orient2d, Coord};
 use rstar::primitives::{GeomWithData, Rectangle};
-use rstar::{RTree, RTreeObject};
+use rstar::RTreeObject;
 
 /// Points where two different rings may touch, by the bits of their coordinates.
 pub type Touches = rustc_hash::FxHashSet<[u64; 2]>;
@@ -147,45 +147,8 @@ impl MayMeet for Option<NearHot> {
     }
 }
 
-/// The changed segments, by `(ring, segment)`, looked up by envelope: a [`BoxGrid`] (measured
-/// several times faster than the R-tree on boundaries, whose segments are short and even) unless
-/// the segments are spread too unevenly for one, then an R-tree. Either reports the same set.
-enum HotIndex {
-    Grid(BoxGrid, Vec<(usize, usize)>),
-    Tree(RTree<GeomWithData<Rectangle<Pt>, (usize, usize)>>),
-}
-
-impl HotIndex {
-    fn new(hot: Vec<GeomWithData<Rectangle<Pt>, (usize, usize)>>) -> HotIndex {
-        let bbox = |g: &GeomWithData<Rectangle<Pt>, (usize, usize)>| {
-            let e = g.envelope();
-            [e.lower()[0], e.lower()[1], e.upper()[0], e.upper()[1]]
-        };
-        match BoxGrid::new(hot.iter().map(bbox).collect()) {
-            Some(grid) => HotIndex::Grid(grid, hot.iter().map(|g| g.data).collect()),
-            None => HotIndex::Tree(RTree::bulk_load(hot)),
-        }
-    }
-
-    /// Calls `f` once with every changed segment whose envelope meets `env`.
-    fn for_each_meeting(&self, env: &rstar::AABB<Pt>, mut f: impl FnMut((usize, usize))) {
-        match self {
-            HotIndex::Grid(grid, ids) => {
-                let q = [
-                    env.lower()[0],
-                    env.lower()[1],
-                    env.upper()[0],
-                    env.upper()[1],
-                ];
-                grid.for_each_meeting(&q, |i| f(ids[i]));
-            }
-            HotIndex::Tree(tree) => {
-                for other in tree.locate_in_envelope_intersecting(env) {
-                    f(other.data);
-                }
-            }
-        }
-    }
+fn bbox(e: &rstar::AABB<Pt>) -> Bbox {
+    [e.lower()[0], e.lower()[1], e.upper()[0], e.upper()[1]]
 }
 
 /// Problems found: `(ring index in the input slice, segment index)`; `usize::MAX` as the segment
@@ -262,7 +225,9 @@ pub fn problems_where(
         .cloned()
         .collect();
     let near = NearHot::new(&hot, items.len());
-    let index = HotIndex::new(hot);
+    // the changed segments, by (ring, segment): a grid, measured several times faster than the
+    // R-tree on boundaries, whose segments are short and even (the tree when they are not)
+    let index = BoxIndex::new(hot.iter().map(|g| (bbox(&g.envelope()), g.data)).collect());
     for (count, item) in items.iter().enumerate() {
         if count % 8192 == 0 {
             interrupt();
@@ -275,7 +240,7 @@ pub fn problems_where(
         let pts = rings[k].pts;
         let n = pts.len();
         let (a, b) = (pts[i], pts[(i + 1) % n]);
-        index.for_each_meeting(&item.envelope(), |(k2, j)| {
+        index.for_each_meeting(&bbox(&item.envelope()), |(k2, j)| {
             if item_changed && (k2, j) <= (k, i) {
                 return;
             }
