@@ -90,7 +90,7 @@ impl BoxGrid {
         for b in &grid.boxes {
             let (cx0, cy0, cx1, cy1) = grid.range(b);
             total += (cx1 - cx0 + 1) * (cy1 - cy0 + 1);
-            if total > MAX_CELLS_PER_BOX * n + 1024 {
+            if total > MAX_CELLS_PER_BOX * n + 1024 || total > u32::MAX as usize {
                 return None;
             }
             for cy in cy0..=cy1 {
