@@ -20,7 +20,7 @@ fn steps(c: &mut Criterion) {
         geometry::orient(&mut shape);
         let ring = shape.parts[0][0].clone();
         let cands = medial::candidates(&ring, &mut || {});
-        let runs = filter::map_runs(&ring, &cands, 5.0, 5.0);
+        let runs = filter::map_runs(&ring, &cands, 5.0, 5.0, &mut || {});
         let (ct, _) = encode(&s.wkb, s.srid, &opts, &mut || {}).expect("encode");
         let mut g = c.benchmark_group(format!("{} ({} vertices)", s.name, s.npoints));
         g.sample_size(10);
@@ -28,7 +28,7 @@ fn steps(c: &mut Criterion) {
             b.iter(|| medial::candidates(black_box(&ring), &mut || {}))
         });
         g.bench_function(BenchmarkId::new("2 filter map_runs", ""), |b| {
-            b.iter(|| filter::map_runs(black_box(&ring), &cands, 5.0, 5.0))
+            b.iter(|| filter::map_runs(black_box(&ring), &cands, 5.0, 5.0, &mut || {}))
         });
         g.bench_function(BenchmarkId::new("2 filter select", ""), |b| {
             b.iter(|| filter::select(ring.len(), black_box(runs.clone()), 0.4))

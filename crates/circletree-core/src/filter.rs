@@ -88,13 +88,31 @@ fn sweep(a: Pt, b: Pt, c: Pt) -> f64 {
 }
 
 /// Steps 1-2: runs of at least two edges for each candidate, radius averaged over its run.
-pub fn map_runs(ring: &[Pt], cands: &[Candidate], min_radius: f64, tol: f64) -> Vec<Mapped> {
+pub fn map_runs(
+    ring: &[Pt],
+    cands: &[Candidate],
+    min_radius: f64,
+    tol: f64,
+    interrupt: &mut dyn FnMut(),
+) -> Vec<Mapped> {
     let n = ring.len();
-    let mut out = Vec::new();
+    let mut out: Vec<Mapped> = Vec::new();
     // Nearly identical circles (cocircular vertices give many) would map the same long runs again
     // and again: keep one per cell of a quarter of the tolerance in centre and radius.
     let cell = (tol / 4.0).max(f64::MIN_POSITIVE);
     let mut seen_circles = rustc_hash::FxHashSet::default();
+    // Where the vertices of a finely stroked arc are all on one circle, their circumcentres scatter
+    // by more than that cell (a circumcircle of three close points is ill-conditioned) and each maps
+    // a run of most of the ring: quadratic (hours for ST_Buffer(point, 1e6, 250000) at a tolerance
+    // of a millimetre). So the edges walked are counted, and past a budget far above what real
+    // boundaries need (at most 146 edges per vertex on both data sets, from 1 m to 500 m; 70 on the
+    // synthetic million-vertex coastline), a seed that lies on a run of at least LONG_RUN edges
+    // already mapped to a circle of the same side is not walked again. long_owner[v] is the last
+    // such run through vertex v.
+    let budget = WORK_PER_VERTEX.saturating_mul(n).saturating_add(WORK_FLOOR);
+    let mut long_owner: Vec<u32> = Vec::new();
+    let mut work = 0usize;
+    let mut total = 0usize;
     for cand in cands {
         if cand.r.abs() < min_radius {
             continue;
@@ -111,10 +129,23 @@ pub fn map_runs(ring: &[Pt], cands: &[Candidate], min_radius: f64, tol: f64) -> 
         let mut seen = [(0usize, 0usize); 3];
         let mut nseen = 0;
         for &seed in &cand.verts {
+            if work >= INTERRUPT_WORK {
+                interrupt();
+                total += work;
+                work = 0;
+            }
             if seen[..nseen].iter().any(|&(s, l)| (seed + n - s) % n <= l) {
                 continue;
             }
+            if total + work > budget {
+                if let Some(o) = long_owner.get(seed).and_then(|&o| out.get(o as usize)) {
+                    if o.r.signum() == cand.r.signum() {
+                        continue;
+                    }
+                }
+            }
             let (s0, l0) = run_at(ring, cand.c, cand.r, seed, tol);
+            work += l0 + 1;
             if l0 < 2 {
                 continue;
             }
@@ -125,6 +156,7 @@ pub fn map_runs(ring: &[Pt], cands: &[Candidate], min_radius: f64, tol: f64) -> 
                 / (l0 + 1) as f64;
             let rho = mean * cand.r.signum();
             let (s, l) = run_at(ring, cand.c, rho, seed, tol);
+            work += 2 * l0 + l;
             let (s, l, rho) = if l >= l0 {
                 (s, l, rho)
             } else {
@@ -135,6 +167,16 @@ pub fn map_runs(ring: &[Pt], cands: &[Candidate], min_radius: f64, tol: f64) -> 
             }
             seen[nseen] = (s, l);
             nseen += 1;
+            if l >= LONG_RUN {
+                if long_owner.is_empty() {
+                    long_owner = vec![u32::MAX; n];
+                }
+                let id = u32::try_from(out.len()).unwrap_or(u32::MAX);
+                for k in 0..=l {
+                    long_owner[(s + k) % n] = id;
+                }
+                work += l;
+            }
             out.push(Mapped {
                 c: cand.c,
                 r: rho,
@@ -145,6 +187,15 @@ pub fn map_runs(ring: &[Pt], cands: &[Candidate], min_radius: f64, tol: f64) -> 
     }
     out
 }
+
+/// Runs at least this long mark their vertices (see [`map_runs`]).
+const LONG_RUN: usize = 64;
+/// The budget of edges walked before a seed on a long run is skipped: this many per vertex...
+const WORK_PER_VERTEX: usize = 256;
+/// ... and this many more (small rings never reach it).
+const WORK_FLOOR: usize = 1 << 22;
+/// Edges walked between two calls of the interrupt callback.
+const INTERRUPT_WORK: usize = 1 << 18;
 
 /// Steps 3-4: choose the runs that cover the ring, longest first, within the overlap allowance.
 pub fn select(n: usize, mut runs: Vec<Mapped>, overlap: f64) -> Vec<Mapped> {
@@ -209,7 +260,7 @@ mod tests {
     fn disc_maps_to_few_circles() {
         let ring = buffer_disc(100.0, 8);
         let c = candidates(&ring, &mut || {});
-        let runs = map_runs(&ring, &c, 5.0, 1.0);
+        let runs = map_runs(&ring, &c, 5.0, 1.0, &mut || {});
         let kept = select(ring.len(), runs, 0.4);
         assert!(!kept.is_empty() && kept.len() <= 2, "{kept:?}");
         assert!(kept
@@ -218,9 +269,32 @@ mod tests {
     }
 
     #[test]
+    fn a_finely_stroked_disc_maps_its_circle_once_not_once_per_vertex() {
+        // ST_Buffer(point, 1e5, 25000): 100,000 vertices all on one circle. Their circumcentres
+        // scatter by more than the dedup cell, and each candidate's run is most of the ring: every
+        // vertex walking the whole ring again was quadratic (hours at a million vertices, and not
+        // cancellable), and the edges it maps are what `select` walks again.
+        let ring = buffer_disc(1.0e5, 25_000);
+        let c = candidates(&ring, &mut || {});
+        let mut calls = 0;
+        let runs = map_runs(&ring, &c, 0.001, 0.0005, &mut || calls += 1);
+        // edges mapped in all: about 55 per vertex (it was 14,646 runs, 4,400 per vertex)
+        let mapped: usize = runs.iter().map(|m| m.len).sum();
+        assert!(
+            mapped < 256 * ring.len(),
+            "{} runs, {mapped} edges",
+            runs.len()
+        );
+        assert!(runs.iter().any(|m| m.len > ring.len() / 2));
+        let kept = select(ring.len(), runs, 0.4);
+        assert!(kept.iter().all(|m| (m.r - 1.0e5).abs() < 0.01), "{kept:?}");
+        assert!(calls >= 1);
+    }
+
+    #[test]
     fn min_radius_drops_everything_small() {
         let ring = buffer_disc(10.0, 8);
         let c = candidates(&ring, &mut || {});
-        assert!(map_runs(&ring, &c, 11.0, 1.0).is_empty());
+        assert!(map_runs(&ring, &c, 11.0, 1.0, &mut || {}).is_empty());
     }
 }

@@ -45,7 +45,7 @@ pub(super) fn initial_entries(
     let n = ring.len();
     let kept = if circles {
         let cands = medial::candidates(ring, interrupt);
-        let runs = filter::map_runs(ring, &cands, opts.min_radius, max_error / 2.0);
+        let runs = filter::map_runs(ring, &cands, opts.min_radius, max_error / 2.0, interrupt);
         interrupt();
         filter::select(n, runs, opts.overlap)
     } else {
