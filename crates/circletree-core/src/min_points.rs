@@ -108,13 +108,75 @@ fn chain(
             }
         }
     }
-    let mut out = Vec::new();
+    let mut path = vec![len];
     let mut k = from[len];
     while k > 0 {
-        out.push(a + k);
+        path.push(k);
         k = from[k];
     }
-    out.reverse();
+    path.push(0);
+    path.reverse();
+    merge_long(ring, a, &stored, &path, tol, interrupt)
+        .into_iter()
+        .map(|k| a + k)
+        .collect()
+}
+
+/// The window bounds each shortcut, so a long straight run (a densified edge) would keep a vertex
+/// every [`WINDOW`] vertices. Where two consecutive shortcuts of the shortest path span more than
+/// the window (nowhere else could one of their vertices be dropped: the path is the shortest within
+/// it), the shared vertex is dropped while one shortcut from the last vertex kept allows it, its
+/// wedge carried on past the window. The interior vertices kept, as offsets into the chain.
+fn merge_long(
+    ring: &[Pt],
+    a: usize,
+    stored: &[Pt],
+    path: &[usize],
+    tol: f64,
+    interrupt: &mut dyn FnMut(),
+) -> Vec<usize> {
+    let n = ring.len();
+    let p = |k: usize| ring[(a + k) % n];
+    let last = path.len() - 1;
+    let mut out = Vec::new();
+    let mut cur = 0;
+    let mut steps = 0usize;
+    while cur < last {
+        if cur + 2 > last || path[cur + 2] - path[cur] <= WINDOW {
+            cur += 1;
+            if cur < last {
+                out.push(path[cur]);
+            }
+            continue;
+        }
+        let i = path[cur];
+        let mut wedge = Wedge::new(stored[i], tol);
+        let mut best = cur + 1;
+        let mut t = cur + 2;
+        for (j, &sj) in stored.iter().enumerate().take(path[last] + 1).skip(i + 2) {
+            steps += 1;
+            if steps % INTERRUPT_EVERY == 0 {
+                interrupt();
+            }
+            if !wedge.add(p(j - 1)) {
+                break;
+            }
+            if j == path[t] {
+                let (allowed, len) = wedge.allows(sj);
+                if allowed && wedge.fits(ring, a, i, j, sj, len) {
+                    best = t;
+                }
+                if t == last {
+                    break;
+                }
+                t += 1;
+            }
+        }
+        cur = best;
+        if cur < last {
+            out.push(path[cur]);
+        }
+    }
     out
 }
 
@@ -247,6 +309,37 @@ mod tests {
             let b = kept.get(k + 1).copied().unwrap_or(kept[0] + n);
             (a + 1..b).all(|v| dist_to_segment(ring[v % n], ring[a], ring[b % n]) <= tol)
         })
+    }
+
+    #[test]
+    fn a_densified_square_keeps_its_corners_not_a_vertex_per_window() {
+        // 4 × 25,000 vertices a millimetre apart on straight sides, as densified boundaries are:
+        // bounded by the window alone, a vertex was kept every 256 (392 in all)
+        let q = 25_000;
+        let ring: Vec<Pt> = (0..4 * q)
+            .map(|i| {
+                let s = (i % q) as f64 * 1e-3;
+                let l = q as f64 * 1e-3;
+                match i / q {
+                    0 => [s, 0.0],
+                    1 => [l, s],
+                    2 => [l - s, l],
+                    _ => [0.0, l - s],
+                }
+            })
+            .collect();
+        let mut calls = 0;
+        let kept = keep(&ring, 0.01, &[], &|p| p, &mut || calls += 1);
+        assert!(kept.len() <= 6, "{kept:?}");
+        // each corner kept, or a vertex within the tolerance of it (10 vertices of 1 mm)
+        for corner in [0, q, 2 * q, 3 * q] {
+            assert!(
+                kept.iter().any(|&v| v.abs_diff(corner) <= 10),
+                "{corner}: {kept:?}"
+            );
+        }
+        assert!(within(&ring, &kept, 0.01));
+        assert!(calls >= 4 * q / INTERRUPT_EVERY, "{calls} calls");
     }
 
     #[test]
