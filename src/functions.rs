@@ -199,7 +199,7 @@ fn _ct_encode_within_wkb(
         crate::settings::ENCODE_WITHIN_BYTES_PER_VERTEX,
         "ct_encode_within",
     );
-    let (value, report) = circletree_core::encode::encode_within(
+    let (value, bytes, report) = circletree_core::encode::encode_within_stored(
         wkb,
         srid.unwrap_or(0),
         max_error,
@@ -210,7 +210,7 @@ fn _ct_encode_within_wkb(
     if report.dropped_zm {
         pgrx::notice!("circletree: the geometry's Z and M values were dropped; circletree stores 2D boundaries");
     }
-    Some(CircleTree::new(value))
+    Some(CircleTree { value, bytes })
 }
 
 /// The metrics stroke a value's arcs to a hundredth of its grid: refuse one whose stroke would

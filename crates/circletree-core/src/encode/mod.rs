@@ -185,6 +185,19 @@ pub fn encode_within(
     invalid_reason: Option<&str>,
     interrupt: &mut dyn FnMut(),
 ) -> Result<(CircleTree, Report)> {
+    encode_within_stored(wkb, srid, max_error, invalid_reason, interrupt)
+        .map(|(ct, _, report)| (ct, report))
+}
+
+/// [`encode_within`] with the value's stored bytes (`ct.to_bytes()`), which it has written
+/// already to rank the plans: a caller that stores the value need not write it again.
+pub fn encode_within_stored(
+    wkb: &[u8],
+    srid: i32,
+    max_error: f64,
+    invalid_reason: Option<&str>,
+    interrupt: &mut dyn FnMut(),
+) -> Result<(CircleTree, Vec<u8>, Report)> {
     positive("max_error", max_error)?;
     if !(MAX_ERROR_RANGE.0..=MAX_ERROR_RANGE.1).contains(&max_error) {
         return Err(range_error(max_error));
@@ -229,23 +242,31 @@ pub fn encode_within(
             grid,
         };
         match unchecked(&prep, srid, &plan, max_error, interrupt) {
-            Ok((bytes, start)) => plans.push((bytes, plan, Some(start))),
+            Ok((priced, start)) => plans.push((priced, plan, Some(start))),
             Err(e) => {
                 first_error.get_or_insert(e);
             }
         }
     }
-    plans.sort_by_key(|p| p.0);
-    let mut best: Option<(usize, CircleTree, Report)> = None;
-    for (price, plan, start) in plans {
-        if best.as_ref().is_some_and(|b| b.0 <= price) {
+    plans.sort_by_key(|p| p.0 .1.len());
+    let mut best: Option<(CircleTree, Vec<u8>, Report)> = None;
+    for ((priced, priced_bytes), plan, start) in plans {
+        if best
+            .as_ref()
+            .is_some_and(|b| b.1.len() <= priced_bytes.len())
+        {
             break;
         }
         match run(&prep, srid, &plan, max_error, start, interrupt) {
             Ok((ct, report)) => {
-                let n = ct.to_bytes().len();
-                if best.as_ref().is_none_or(|b| n < b.0) {
-                    best = Some((n, ct, report));
+                // most starts need no repair: the result is then the value already written
+                let bytes = if ct == priced {
+                    priced_bytes
+                } else {
+                    ct.to_bytes()
+                };
+                if best.as_ref().is_none_or(|b| bytes.len() < b.1.len()) {
+                    best = Some((ct, bytes, report));
                 }
             }
             Err(e) => {
@@ -254,7 +275,7 @@ pub fn encode_within(
         }
     }
     match (best, first_error) {
-        (Some((_, ct, report)), _) => Ok((ct, report)),
+        (Some((ct, bytes, report)), _) => Ok((ct, bytes, report)),
         (None, Some(e)) => Err(e),
         (None, None) => Err(range_error(max_error)),
     }
@@ -435,16 +456,17 @@ fn tree(
     }
 }
 
-/// A plan's starting rings on its first grid and the bytes they would take if nothing needed
-/// repair (the repair loop adds a point or two in a thousand, so this ranks plans as their
+/// A plan's starting rings on its first grid, and the value and bytes they would make if nothing
+/// needed repair (the repair loop adds a point or two in a thousand, so this ranks plans as their
 /// results rank, for a fraction of the work).
+#[allow(clippy::type_complexity)]
 fn unchecked(
     prep: &Prepared,
     srid: i32,
     plan: &Plan,
     max_error: f64,
     interrupt: &mut dyn FnMut(),
-) -> Result<(usize, (Vec<RingState>, Report))> {
+) -> Result<((CircleTree, Vec<u8>), (Vec<RingState>, Report))> {
     let g = Grid::new(plan.grid);
     let allowed = Touches::default();
     let ctx = Context {
@@ -464,7 +486,8 @@ fn unchecked(
         parts,
         0,
     );
-    Ok((ct.to_bytes().len(), (rings, report)))
+    let bytes = ct.to_bytes();
+    Ok(((ct, bytes), (rings, report)))
 }
 
 /// Run the closed loop for one plan, refining the grid when even every vertex is not enough.
