@@ -5,7 +5,7 @@ use crate::error::{Error, Result};
 use crate::format::{Circle, CircleTree};
 use crate::geometry::{Kind, Polygon, Pt};
 use crate::grid::Grid;
-use crate::reconstruct::{ring_wkt, stroke_ring};
+use crate::reconstruct::{point_ring, ring_wkt, stroke_ring};
 
 /// Grid steps to coordinates: `q × mantissa / 10^k` in one correctly rounded operation.
 /// The value's grid ([`Grid::coord`] is the one conversion every reader and writer uses).
@@ -107,7 +107,12 @@ pub fn polygons(ct: &CircleTree, tol: f64) -> Vec<Polygon> {
         .map(|part| {
             part.iter()
                 .map(|ring| {
-                    let mut pts: Vec<Pt> = stroke_ring(&ring_circles(ct, ring), tol);
+                    let mut pts: Vec<Pt> = if ring.iter().all(|c| c.r == 0) {
+                        let f = scale(ct);
+                        point_ring(ring.iter().map(|c| [f(c.x), f(c.y)]))
+                    } else {
+                        stroke_ring(&ring_circles(ct, ring), tol)
+                    };
                     while !pts.is_empty() && pts.len() < 3 {
                         pts.push(pts[pts.len() - 1]);
                     }
@@ -173,29 +178,19 @@ pub fn check_size(ct: &CircleTree, tol: f64) -> Result<()> {
 
 /// The rebuilt geometry as ISO WKB.
 pub fn to_wkb(ct: &CircleTree, tol: Option<f64>) -> Result<Vec<u8>> {
-    let tol = arc_tolerance(ct, tol)?;
-    check_size(ct, tol)?;
-    Ok(crate::wkb::write(ct.kind, &polygons(ct, tol)))
+    rebuilt_ewkb(ct, tol, 0)
 }
 
 /// The rebuilt geometry as PostGIS's EWKB: ISO WKB with the value's SRID in it (when not 0), so
 /// that one decode gives PostGIS everything (`ST_GeomFromEWKB`).
 pub fn to_ewkb(ct: &CircleTree, tol: Option<f64>) -> Result<Vec<u8>> {
-    let wkb = to_wkb(ct, tol)?;
-    Ok(with_srid(wkb, ct.srid))
+    rebuilt_ewkb(ct, tol, ct.srid)
 }
 
-/// ISO WKB (little endian, 2D Polygon or MultiPolygon) to EWKB with `srid`: the type word gets
-/// the SRID flag and the SRID follows it; nested polygons carry none, as PostGIS writes them.
-fn with_srid(mut wkb: Vec<u8>, srid: i32) -> Vec<u8> {
-    const SRID_FLAG: u32 = 0x2000_0000;
-    if srid == 0 || wkb.len() < 5 || wkb[0] != 1 {
-        return wkb;
-    }
-    let ty = u32::from_le_bytes([wkb[1], wkb[2], wkb[3], wkb[4]]) | SRID_FLAG;
-    wkb[1..5].copy_from_slice(&ty.to_le_bytes());
-    wkb.splice(5..5, srid.to_le_bytes());
-    wkb
+fn rebuilt_ewkb(ct: &CircleTree, tol: Option<f64>, srid: i32) -> Result<Vec<u8>> {
+    let tol = arc_tolerance(ct, tol)?;
+    check_size(ct, tol)?;
+    Ok(crate::wkb::write_ewkb(ct.kind, &polygons(ct, tol), srid))
 }
 
 /// The envelope of a stored value as EWKB, from its header alone ([`CircleTree::envelope`]): a
@@ -204,8 +199,11 @@ fn with_srid(mut wkb: Vec<u8>, srid: i32) -> Vec<u8> {
 pub fn envelope_ewkb(bytes: &[u8]) -> Result<Vec<u8>> {
     let (srid, bbox) = CircleTree::envelope(bytes)?;
     let ring = bbox.map(|[x0, y0, x1, y1]| vec![vec![[x0, y0], [x1, y0], [x1, y1], [x0, y1]]]);
-    let wkb = crate::wkb::write(Kind::Polygon, &ring.into_iter().collect::<Vec<_>>());
-    Ok(with_srid(wkb, srid))
+    Ok(crate::wkb::write_ewkb(
+        Kind::Polygon,
+        &ring.into_iter().collect::<Vec<_>>(),
+        srid,
+    ))
 }
 
 /// The rebuilt geometry with true arcs as EWKT, `SRID=n;` first when the SRID is not 0.
@@ -261,16 +259,21 @@ mod tests {
 
     #[test]
     fn ewkb_carries_the_srid_once() {
-        let wkb = crate::wkb::write(
-            Kind::MultiPolygon,
-            &[vec![vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]]],
-        );
-        let e = with_srid(wkb.clone(), 32760);
-        assert_eq!(e.len(), wkb.len() + 4);
-        assert_eq!(&e[1..5], &(6u32 | 0x2000_0000).to_le_bytes());
-        assert_eq!(&e[5..9], &32760i32.to_le_bytes());
-        assert_eq!(&e[9..], &wkb[5..]);
-        assert_eq!(with_srid(wkb.clone(), 0), wkb);
+        let poly = vec![vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]];
+        for (kind, parts, code) in [
+            (Kind::MultiPolygon, vec![poly.clone(), poly.clone()], 6u32),
+            (Kind::Polygon, vec![poly.clone()], 3),
+            (Kind::Polygon, vec![], 3),
+        ] {
+            let wkb = crate::wkb::write(kind, &parts);
+            let e = crate::wkb::write_ewkb(kind, &parts, 32760);
+            assert_eq!(e.len(), wkb.len() + 4);
+            assert_eq!(&e[1..5], &(code | 0x2000_0000).to_le_bytes());
+            assert_eq!(&e[5..9], &32760i32.to_le_bytes());
+            // the nested polygons carry no SRID: the rest is the WKB's
+            assert_eq!(&e[9..], &wkb[5..]);
+            assert_eq!(crate::wkb::write_ewkb(kind, &parts, 0), wkb);
+        }
     }
 
     #[test]

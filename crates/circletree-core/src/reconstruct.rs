@@ -156,87 +156,105 @@ fn line_intersection(p: Pt, d: Pt, q: Pt, e: Pt) -> Option<Pt> {
 
 /// Rebuild one ring from circles `(x, y, ρ)` in boundary order.
 pub fn ring_spans(circles: &[[f64; 3]]) -> Spans {
+    let mut spans = Vec::with_capacity(circles.len());
+    for_each_span(circles, |span| spans.push(span));
+    spans
+}
+
+/// The tangent from circle `i` to the next (see [`tangent`]).
+fn ring_tangent(circles: &[[f64; 3]], i: usize) -> (Pt, Pt, Pt) {
+    let a = circles[i];
+    let b = circles[(i + 1) % circles.len()];
+    if a[2] == 0.0 && b[2] == 0.0 {
+        // From point to point: the tangent is the segment between them (what `tangent`
+        // gives, to the bit). Its direction is read only at a circle with a radius, never
+        // at these two ends.
+        ([a[0], a[1]], [b[0], b[1]], [f64::NAN; 2])
+    } else {
+        tangent([a[0], a[1]], a[2], [b[0], b[1]], b[2])
+    }
+}
+
+/// The join at circle `i` between the tangent coming in (`prev`) and the one going out
+/// (`next`): where the incoming tangent ends, where the outgoing one starts, and the arc
+/// between them (none at a point, or where the tangents meet at a corner instead).
+fn ring_join(circle: [f64; 3], prev: (Pt, Pt, Pt), next: (Pt, Pt, Pt)) -> (Pt, Pt, Option<Seg>) {
+    let (_, e_prev, d_prev) = prev;
+    let (s_next, _, d_next) = next;
+    let [x, y, r] = circle;
+    if r == 0.0 {
+        return (e_prev, s_next, None);
+    }
+    let c = [x, y];
+    let ang_in = (e_prev[1] - y).atan2(e_prev[0] - x);
+    let ang_out = (s_next[1] - y).atan2(s_next[0] - x);
+    let mut theta = (ang_out - ang_in).rem_euclid(TAU);
+    if r < 0.0 {
+        theta = -((ang_in - ang_out).rem_euclid(TAU));
+    }
+    if theta.abs() <= PI + FRAC_PI_2 {
+        let arc = (theta != 0.0).then_some(Seg::Arc {
+            c,
+            r: r.abs(),
+            a0: ang_in,
+            sweep: theta,
+            from: e_prev,
+            to: s_next,
+        });
+        (e_prev, s_next, arc)
+    } else if let Some(xp) = line_intersection(e_prev, d_prev, s_next, d_next) {
+        (xp, xp, None)
+    } else {
+        (e_prev, s_next, None)
+    }
+}
+
+/// [`ring_spans`] one span at a time, in order, with nothing held for the whole ring: span `i`
+/// needs only the joins at circles `i` and `i + 1`, so each tangent and each join is computed
+/// as it is reached (the decoder strokes straight from here; `ring_spans` collects).
+pub fn for_each_span(circles: &[[f64; 3]], mut f: impl FnMut(Span)) {
     let m = circles.len();
     if m == 0 {
-        return vec![];
+        return;
     }
     if m == 1 {
         let [x, y, r] = circles[0];
         if r == 0.0 {
-            return vec![Span::one(Seg::Line([x, y], [x, y]))];
+            f(Span::one(Seg::Line([x, y], [x, y])));
+            return;
         }
         let p = [x + r.abs(), y];
-        return vec![Span::one(Seg::Arc {
+        f(Span::one(Seg::Arc {
             c: [x, y],
             r: r.abs(),
             a0: 0.0,
             sweep: TAU * r.signum(),
             from: p,
             to: p,
-        })];
+        }));
+        return;
     }
-    let tans: Vec<(Pt, Pt, Pt)> = (0..m)
-        .map(|i| {
-            let a = circles[i];
-            let b = circles[(i + 1) % m];
-            if a[2] == 0.0 && b[2] == 0.0 {
-                // From point to point: the tangent is the segment between them (what `tangent`
-                // gives, to the bit). Its direction is read only at a circle with a radius, never
-                // at these two ends.
-                ([a[0], a[1]], [b[0], b[1]], [f64::NAN; 2])
-            } else {
-                tangent([a[0], a[1]], a[2], [b[0], b[1]], b[2])
-            }
-        })
-        .collect();
-    // Join at circle i: (point where the incoming tangent ends, point where the outgoing starts, arc)
-    let mut p_in = vec![[0.0; 2]; m];
-    let mut p_out = vec![[0.0; 2]; m];
-    let mut arcs: Vec<Option<Seg>> = vec![None; m];
+    let first_tan = ring_tangent(circles, 0);
+    let first = ring_join(circles[0], ring_tangent(circles, m - 1), first_tan);
+    let (mut tan, mut join) = (first_tan, first);
     for i in 0..m {
-        let (_, e_prev, d_prev) = tans[(i + m - 1) % m];
-        let (s_next, _, d_next) = tans[i];
-        let [x, y, r] = circles[i];
-        p_in[i] = e_prev;
-        p_out[i] = s_next;
-        if r == 0.0 {
-            continue;
-        }
-        let c = [x, y];
-        let ang_in = (e_prev[1] - y).atan2(e_prev[0] - x);
-        let ang_out = (s_next[1] - y).atan2(s_next[0] - x);
-        let mut theta = (ang_out - ang_in).rem_euclid(TAU);
-        if r < 0.0 {
-            theta = -((ang_in - ang_out).rem_euclid(TAU));
-        }
-        if theta.abs() <= PI + FRAC_PI_2 {
-            if theta != 0.0 {
-                arcs[i] = Some(Seg::Arc {
-                    c,
-                    r: r.abs(),
-                    a0: ang_in,
-                    sweep: theta,
-                    from: e_prev,
-                    to: s_next,
-                });
-            }
-        } else if let Some(xp) = line_intersection(e_prev, d_prev, s_next, d_next) {
-            p_in[i] = xp;
-            p_out[i] = xp;
-        }
+        let (next_tan, next_join) = if i + 1 < m {
+            let t = ring_tangent(circles, i + 1);
+            (t, ring_join(circles[i + 1], tan, t))
+        } else {
+            (first_tan, first)
+        };
+        let (p_in, p_out, arc) = join;
+        let tangent = Seg::Line(p_out, next_join.0);
+        f(if let Some(a) = arc {
+            Span::two(a, tangent)
+        } else if p_in != p_out {
+            Span::two(Seg::Line(p_in, p_out), tangent)
+        } else {
+            Span::one(tangent)
+        });
+        (tan, join) = (next_tan, next_join);
     }
-    (0..m)
-        .map(|i| {
-            let tangent = Seg::Line(p_out[i], p_in[(i + 1) % m]);
-            if let Some(a) = arcs[i] {
-                Span::two(a, tangent)
-            } else if p_in[i] != p_out[i] {
-                Span::two(Seg::Line(p_in[i], p_out[i]), tangent)
-            } else {
-                Span::one(tangent)
-            }
-        })
-        .collect()
 }
 
 /// Number of chords for an arc so that no chord is farther than `tol` from the arc.
@@ -260,37 +278,60 @@ pub fn stroke_spans(
 ) {
     for (i, span) in spans.iter().enumerate() {
         let start = pts.len();
-        for seg in span {
-            match *seg {
-                Seg::Line(a, _) => pts.push(a),
-                Seg::Arc {
-                    c,
-                    r,
-                    a0,
-                    sweep,
-                    from,
-                    ..
-                } => {
-                    let k = arc_segments(r, sweep, tol);
-                    pts.push(from);
-                    for j in 1..k {
-                        let t = a0 + sweep * (j as f64) / (k as f64);
-                        pts.push([c[0] + r * t.cos(), c[1] + r * t.sin()]);
-                    }
-                }
-            }
-        }
+        stroke_span(span, tol, pts);
         if let Some(ids) = span_of.as_deref_mut() {
             ids.resize(ids.len() + pts.len() - start, i as u32);
         }
     }
 }
 
+/// Stroke one span: each segment's start, and an arc's chords.
+fn stroke_span(span: &Span, tol: f64, pts: &mut Vec<Pt>) {
+    for seg in span {
+        match *seg {
+            Seg::Line(a, _) => pts.push(a),
+            Seg::Arc {
+                c,
+                r,
+                a0,
+                sweep,
+                from,
+                ..
+            } => {
+                let k = arc_segments(r, sweep, tol);
+                pts.push(from);
+                for j in 1..k {
+                    let t = a0 + sweep * (j as f64) / (k as f64);
+                    pts.push([c[0] + r * t.cos(), c[1] + r * t.sin()]);
+                }
+            }
+        }
+    }
+}
+
 /// Stroke one ring: open ring points with consecutive repeats removed.
 pub fn stroke_ring(circles: &[[f64; 3]], tol: f64) -> Vec<Pt> {
-    let spans = ring_spans(circles);
-    let mut pts = Vec::new();
-    stroke_spans(&spans, tol, &mut pts, None);
+    if circles.iter().all(|c| c[2] == 0.0) {
+        return point_ring(circles.iter().map(|c| [c[0], c[1]]));
+    }
+    let mut pts = Vec::with_capacity(circles.len());
+    for_each_span(circles, |span| stroke_span(&span, tol, &mut pts));
+    open_ring(pts)
+}
+
+/// The ring of zero-radius circles at `points`, as [`stroke_ring`] gives it: between two points
+/// the tangent is the segment joining them and no join adds a point, so the ring is the points
+/// themselves (consecutive repeats removed). No span is built: `ct_encode_within`'s values are
+/// all points, and this is most of their decode.
+pub fn point_ring(points: impl ExactSizeIterator<Item = Pt>) -> Vec<Pt> {
+    let mut pts = Vec::with_capacity(points.len());
+    pts.extend(points);
+    open_ring(pts)
+}
+
+/// Stroked points as an open ring: consecutive repeats removed, and the closing repeats of the
+/// first point.
+fn open_ring(mut pts: Vec<Pt>) -> Vec<Pt> {
     pts.dedup();
     while pts.len() > 1 && pts.first() == pts.last() {
         pts.pop();
@@ -425,6 +466,46 @@ mod tests {
             pts,
             vec![[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]]
         );
+    }
+
+    #[test]
+    fn a_ring_of_points_is_what_its_spans_stroke_to_the_bit() {
+        // repeats (consecutive, and of the first point at the end), a lone point, a pair, and
+        // coordinates that are not exact in binary
+        let rings: Vec<Vec<[f64; 3]>> = vec![
+            vec![[0.1, 0.2, 0.0]],
+            vec![[0.1, 0.2, 0.0], [0.3, -0.7, 0.0]],
+            vec![
+                [0.1, 0.2, 0.0],
+                [0.1, 0.2, 0.0],
+                [1e6 + 0.3, -0.7, -0.0],
+                [5.5, 3.3, 0.0],
+                [5.5, 3.3, 0.0],
+                [0.1, 0.2, 0.0],
+                [0.1, 0.2, 0.0],
+            ],
+            (0..1000)
+                .map(|i| {
+                    let t = i as f64 * 0.0063;
+                    [
+                        (t.cos() * 1234.567 * 10.0).round() / 10.0,
+                        (t.sin() * 765.4321 * 10.0).round() / 10.0,
+                        0.0,
+                    ]
+                })
+                .collect(),
+        ];
+        for ring in rings {
+            let mut spans_pts = Vec::new();
+            stroke_spans(&ring_spans(&ring), 0.01, &mut spans_pts, None);
+            let want = open_ring(spans_pts);
+            let got = stroke_ring(&ring, 0.01);
+            assert_eq!(
+                got.iter().map(|p| p.map(f64::to_bits)).collect::<Vec<_>>(),
+                want.iter().map(|p| p.map(f64::to_bits)).collect::<Vec<_>>()
+            );
+            assert!(!got.is_empty());
+        }
     }
 
     #[test]

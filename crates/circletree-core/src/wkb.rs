@@ -175,21 +175,35 @@ fn poly_rings(p: &Polygon) -> &[Ring] {
 /// buffer of the final size, with no `geo` copy on the way (this is every `ct_decode`'s
 /// output); the `wkb` crate's writer is the reference it is tested against.
 pub fn write(kind: Kind, parts: &[Polygon]) -> Vec<u8> {
+    write_ewkb(kind, parts, 0)
+}
+
+/// [`write`] as PostGIS's EWKB with `srid` (when not 0): the outer type word gets the SRID flag
+/// and the SRID follows it; nested polygons carry none, as PostGIS writes them.
+pub fn write_ewkb(kind: Kind, parts: &[Polygon], srid: i32) -> Vec<u8> {
+    const SRID_FLAG: u32 = 0x2000_0000;
     let ring_bytes = |r: &Ring| 4 + 16 * closed_len(r);
     let poly_bytes = |p: &Polygon| 9 + poly_rings(p).iter().map(ring_bytes).sum::<usize>();
-    let size = match kind {
-        Kind::Polygon => parts.first().map_or(9, poly_bytes),
-        Kind::MultiPolygon => 9 + parts.iter().map(poly_bytes).sum::<usize>(),
-    };
+    let srid_bytes = if srid == 0 { 0 } else { 4 };
+    let size = srid_bytes
+        + match kind {
+            Kind::Polygon => parts.first().map_or(9, poly_bytes),
+            Kind::MultiPolygon => 9 + parts.iter().map(poly_bytes).sum::<usize>(),
+        };
     let mut out = Vec::with_capacity(size);
-    let head = |out: &mut Vec<u8>, code: u32, n: usize| {
+    let head = |out: &mut Vec<u8>, code: u32, n: usize, srid: i32| {
         out.push(1);
-        out.extend_from_slice(&code.to_le_bytes());
+        if srid == 0 {
+            out.extend_from_slice(&code.to_le_bytes());
+        } else {
+            out.extend_from_slice(&(code | SRID_FLAG).to_le_bytes());
+            out.extend_from_slice(&srid.to_le_bytes());
+        }
         out.extend_from_slice(&(n as u32).to_le_bytes());
     };
-    let polygon = |out: &mut Vec<u8>, p: &Polygon| {
+    let polygon = |out: &mut Vec<u8>, p: &Polygon, srid: i32| {
         let rings = poly_rings(p);
-        head(out, 3, rings.len());
+        head(out, 3, rings.len(), srid);
         for r in rings {
             out.extend_from_slice(&(closed_len(r) as u32).to_le_bytes());
             for q in r.iter().chain(r.first()) {
@@ -200,13 +214,13 @@ pub fn write(kind: Kind, parts: &[Polygon]) -> Vec<u8> {
     };
     match kind {
         Kind::Polygon => match parts.first() {
-            Some(p) => polygon(&mut out, p),
-            None => head(&mut out, 3, 0),
+            Some(p) => polygon(&mut out, p, srid),
+            None => head(&mut out, 3, 0, srid),
         },
         Kind::MultiPolygon => {
-            head(&mut out, 6, parts.len());
+            head(&mut out, 6, parts.len(), srid);
             for p in parts {
-                polygon(&mut out, p);
+                polygon(&mut out, p, 0);
             }
         }
     }
