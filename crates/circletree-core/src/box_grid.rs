@@ -117,12 +117,15 @@ impl BoxGrid {
         Some(grid)
     }
 
+    // A float-to-unsigned cast truncates toward zero and sends negatives and NaN to 0, so for the
+    // cell index it is `floor(v).max(0)` exactly, without `floor` (a libm call on baseline x86-64,
+    // 8% of a validity check's time).
     fn col(&self, x: f64) -> usize {
-        (((x - self.x0) / self.cell).floor().max(0.0) as usize).min(self.nx - 1)
+        (((x - self.x0) / self.cell) as usize).min(self.nx - 1)
     }
 
     fn row(&self, y: f64) -> usize {
-        (((y - self.y0) / self.cell).floor().max(0.0) as usize).min(self.ny - 1)
+        (((y - self.y0) / self.cell) as usize).min(self.ny - 1)
     }
 
     /// Cells covered by a box, clamped to the grid: `(col0, row0, col1, row1)`.

@@ -219,12 +219,18 @@ pub fn problems_where(
     interrupt();
     // Every segment is looked up in a tree of the changed ones (all of them on a first check):
     // each pair with a changed segment is met once, and a small tree is cheap to build.
-    let hot: Vec<_> = items
-        .iter()
-        .filter(|g| is_changed(g.data.0, g.data.1))
-        .cloned()
-        .collect();
-    let near = NearHot::new(&hot, items.len());
+    let changed_items: Vec<_>;
+    let hot: &[GeomWithData<Rectangle<Pt>, (usize, usize)>] = if changed.is_none() {
+        &items
+    } else {
+        changed_items = items
+            .iter()
+            .filter(|g| is_changed(g.data.0, g.data.1))
+            .cloned()
+            .collect();
+        &changed_items
+    };
+    let near = NearHot::new(hot, items.len());
     // the changed segments, by (ring, segment): a grid, measured several times faster than the
     // R-tree on boundaries, whose segments are short and even (the tree when they are not)
     let index = BoxIndex::new(hot.iter().map(|g| (bbox(&g.envelope()), g.data)).collect());
