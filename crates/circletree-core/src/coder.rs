@@ -297,27 +297,38 @@ impl<'a> Reader<'a> {
         b
     }
 
-    #[inline]
+    /// Take in one byte when the range has fallen below 2^24. One is always enough: a decision
+    /// leaves at least `(range >> PRECISION) * 32 >= 2^17`, raw bits at least `range >> 8 >= 2^16`.
+    #[inline(always)]
     fn normalize(&mut self) {
-        while self.range < TOP {
+        if self.range < TOP {
             self.range <<= 8;
             self.code = (self.code << 8) | u32::from(self.next());
         }
+        debug_assert!(self.range >= TOP);
+    }
+
+    /// One adaptive decision, without a branch on its outcome (which is often a coin toss, and a
+    /// mispredicted branch costs more than the decision itself).
+    #[inline(always)]
+    fn decide(&mut self, m: &mut Bit) -> bool {
+        let bound = (self.range >> PRECISION) * u32::from(m.0);
+        let b = self.code >= bound;
+        let p = m.0;
+        let (range, taken, q) = std::hint::select_unpredictable(
+            b,
+            (self.range - bound, bound, p - (p >> RATE)),
+            (bound, 0, p + ((ONE - p) >> RATE)),
+        );
+        self.range = range;
+        self.code -= taken;
+        m.0 = q.clamp(32, ONE - 32);
+        self.normalize();
+        b
     }
 
     fn bit(&mut self, m: &mut Bit) -> Result<bool> {
-        let bound = (self.range >> PRECISION) * u32::from(m.0);
-        let b = if self.code < bound {
-            self.range = bound;
-            false
-        } else {
-            self.code -= bound;
-            self.range -= bound;
-            true
-        };
-        m.update(b);
-        self.normalize();
-        Ok(b)
+        Ok(self.decide(m))
     }
 
     fn raw(&mut self, mut n: u32) -> Result<u64> {
@@ -343,6 +354,7 @@ impl<'a> Reader<'a> {
     }
 
     /// Read an integer.
+    #[inline(always)]
     pub fn int(&mut self, m: &mut IntModel) -> Result<i64> {
         let pred = m.prev_class;
         let ctx = m.prev_move;

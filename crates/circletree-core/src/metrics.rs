@@ -130,7 +130,7 @@ pub fn directed_hausdorff(
         let n = r.len();
         for i in 0..n {
             count += 1;
-            if count % 4096 == 0 {
+            if count.is_multiple_of(4096) {
                 interrupt();
             }
             best = segment_max(&tree, r[i], r[(i + 1) % n], best, eps);

@@ -155,7 +155,7 @@ fn merge_long(
         let mut t = cur + 2;
         for (j, &sj) in stored.iter().enumerate().take(path[last] + 1).skip(i + 2) {
             steps += 1;
-            if steps % INTERRUPT_EVERY == 0 {
+            if steps.is_multiple_of(INTERRUPT_EVERY) {
                 interrupt();
             }
             if !wedge.add(p(j - 1)) {
