@@ -219,6 +219,23 @@ fn symbols(parts: &[Vec<Vec<Circle>>], start: (i64, i64), mut f: impl FnMut(usiz
     }
 }
 
+/// Bits the symbols take as coded, and at their static entropy (what a fractional-bit coder
+/// with the same static statistics, tANS or rANS, would approach, before its tables' cost).
+fn symbol_bits(parts: &[Vec<Vec<Circle>>], start: (i64, i64)) -> (f64, f64) {
+    let mut freq = [[0u64; NSYM]; NTABLES];
+    symbols(parts, start, |t, x| freq[t][x.s] += 1);
+    let (mut coded, mut entropy) = (0.0, 0.0);
+    for f in &freq {
+        let len = lengths(f);
+        let total: u64 = f.iter().sum();
+        for (s, &n) in f.iter().enumerate().filter(|(_, &n)| n > 0) {
+            coded += (n * u64::from(len[s])) as f64;
+            entropy -= n as f64 * (n as f64 / total as f64).log2();
+        }
+    }
+    (coded, entropy)
+}
+
 /// The candidate's stream: counts (a 6-bit class and the bits), four tables, the circles.
 fn write(parts: &[Vec<Vec<Circle>>], start: (i64, i64)) -> Vec<u8> {
     let mut freq = [[0u64; NSYM]; NTABLES];
@@ -425,8 +442,8 @@ fn time(mut f: impl FnMut()) -> f64 {
 
 fn main() {
     let samples = common::load(&[]);
-    println!("| t | circles | v1 bytes | v2 bytes | candidate bytes | candidate/v1 | candidate/v2 | v2 parse ms | candidate parse ms |");
-    println!("|---|---|---|---|---|---|---|---|---|");
+    println!("| t | circles | v1 bytes | v2 bytes | candidate bytes | candidate/v1 | candidate/v2 | v2 parse ms | candidate parse ms | symbol bytes | at static entropy |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
     for t in std::env::args().skip(1) {
         let t: f64 = t.parse().expect("a bound");
         let o = Options {
@@ -436,6 +453,7 @@ fn main() {
             max_error: None,
         };
         let (mut b1, mut b2, mut b3, mut n) = (0, 0, 0, 0);
+        let (mut coded, mut entropy) = (0.0, 0.0);
         let mut streams = Vec::new();
         for s in &samples {
             let (mut ct, _) = if std::env::var_os("CT_WITHIN").is_some() {
@@ -459,6 +477,9 @@ fn main() {
                 "the stored value is its header and this stream"
             );
             let mut s3 = write(&ct.parts, cur.start);
+            let (c, e) = symbol_bits(&ct.parts, cur.start);
+            coded += c;
+            entropy += e;
             b2 += total2;
             b3 += header + s3.len();
             s3.extend([0u8; 16]);
@@ -479,11 +500,13 @@ fn main() {
             }
         });
         println!(
-            "| {t} | {n} | {b1} | {b2} | {b3} | {:.3} | {:.3} | {:.2} | {:.2} |",
+            "| {t} | {n} | {b1} | {b2} | {b3} | {:.3} | {:.3} | {:.2} | {:.2} | {:.0} | {:.0} |",
             b3 as f64 / b1 as f64,
             b3 as f64 / b2 as f64,
             p2 * 1e3,
-            p3 * 1e3
+            p3 * 1e3,
+            coded / 8.0,
+            entropy / 8.0
         );
     }
 }
