@@ -35,14 +35,6 @@ impl Default for Bit {
 }
 
 impl Bit {
-    fn update(&mut self, bit: bool) {
-        if bit {
-            self.0 -= self.0 >> RATE;
-        } else {
-            self.0 += (ONE - self.0) >> RATE;
-        }
-        self.0 = self.0.clamp(32, ONE - 32);
-    }
     /// Bits the next symbol would cost (for the encoder's cost function).
     pub fn cost(&self, bit: bool) -> f64 {
         let p = self.0 as f64 / ONE as f64;
@@ -173,22 +165,30 @@ impl Writer {
         self.low = (self.low & 0x00FF_FFFF) << 8;
     }
 
+    /// One byte out when the range has fallen below 2^24; one is always enough (see
+    /// [`Reader`]'s `normalize`).
+    #[inline(always)]
     fn normalize(&mut self) {
-        while self.range < TOP {
+        if self.range < TOP {
             self.range <<= 8;
             self.shift_low();
         }
+        debug_assert!(self.range >= TOP);
     }
 
+    /// One adaptive decision, without a branch on its outcome (as the reader's).
+    #[inline(always)]
     fn bit(&mut self, m: &mut Bit, b: bool) {
         let bound = (self.range >> PRECISION) * u32::from(m.0);
-        if b {
-            self.low += u64::from(bound);
-            self.range -= bound;
-        } else {
-            self.range = bound;
-        }
-        m.update(b);
+        let p = m.0;
+        let (add, range, q) = std::hint::select_unpredictable(
+            b,
+            (bound, self.range - bound, p - (p >> RATE)),
+            (0, bound, p + ((ONE - p) >> RATE)),
+        );
+        self.low += u64::from(add);
+        self.range = range;
+        m.0 = q.clamp(32, ONE - 32);
         self.normalize();
     }
 
