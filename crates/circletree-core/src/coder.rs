@@ -327,10 +327,12 @@ impl<'a> Reader<'a> {
         b
     }
 
+    #[inline(always)]
     fn bit(&mut self, m: &mut Bit) -> Result<bool> {
         Ok(self.decide(m))
     }
 
+    #[inline(always)]
     fn raw(&mut self, mut n: u32) -> Result<u64> {
         let mut v = 0u64;
         while n > 0 {
@@ -349,6 +351,7 @@ impl<'a> Reader<'a> {
     }
 
     /// Read a flag.
+    #[inline(always)]
     pub fn flag(&mut self, m: &mut Bit) -> Result<bool> {
         self.bit(m)
     }
