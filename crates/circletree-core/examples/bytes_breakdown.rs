@@ -6,7 +6,6 @@
 //! `cargo run --release -p circletree-core --example bytes_breakdown -- 10 25 100`
 #[path = "../tests/common/mod.rs"]
 mod common;
-use circletree_core::encode::{encode, encode_within, Options};
 use std::collections::BTreeMap;
 
 #[derive(Default)]
@@ -30,17 +29,7 @@ fn main() {
         for &t in &ts {
             for s in &samples {
                 for encoder in ["ct_encode", "ct_encode_within"] {
-                    let res = if encoder == "ct_encode" {
-                        let o = Options {
-                            min_radius: t / 2.0,
-                            overlap: 0.4,
-                            dp_tolerance: Some(t),
-                            max_error: None,
-                        };
-                        encode(&s.wkb, s.srid, &o, &mut || {})
-                    } else {
-                        encode_within(&s.wkb, s.srid, t, None, &mut || {})
-                    };
+                    let res = common::encode_at(s, t, encoder == "ct_encode_within");
                     let (mut ct, _) = res.unwrap_or_else(|e| panic!("{} at {t}: {e}", s.name));
                     let (header, b) = ct.breakdown();
                     let b = b.expect("version 2");

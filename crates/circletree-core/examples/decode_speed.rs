@@ -4,7 +4,6 @@
 //! `cargo run --release -p circletree-core --example decode_speed -- 10 25 100`
 #[path = "../tests/common/mod.rs"]
 mod common;
-use circletree_core::encode::{encode, Options};
 use circletree_core::format::CircleTree;
 use std::hint::black_box;
 use std::time::Instant;
@@ -33,15 +32,9 @@ fn main() {
     println!("|---|---|---|---|---|---|---|---|---|");
     for t in std::env::args().skip(1) {
         let t: f64 = t.parse().expect("a bound");
-        let o = Options {
-            min_radius: t / 2.0,
-            overlap: 0.4,
-            dp_tolerance: Some(t),
-            max_error: None,
-        };
         let (mut v1, mut v2, mut n) = (Vec::new(), Vec::new(), 0);
         for s in &samples {
-            let (mut ct, _) = encode(&s.wkb, s.srid, &o, &mut || {}).expect("encodes");
+            let (mut ct, _) = common::encode_at(s, t, false).expect("encodes");
             n += ct.ncircles();
             v2.push(ct.to_bytes());
             ct.version = 1;

@@ -1,13 +1,14 @@
 //! A measured candidate for a format version 3, not a format: the circles of every value coded
 //! with static canonical Huffman tables stored in the value (one symbol an integer: its class
-//! relative to a prediction, jointly with the circle's kind where the kind is not yet known), the
-//! bits below the leading one and the sign raw; read by table lookup with a 64-bit bit buffer.
-//! Compared on the same values with version 2's stream (its adaptive binary range coder) and
-//! version 1's varints, for bytes and for parse time. Prints one table row per bound:
+//! relative to a prediction, jointly with a sign flip and, where the kind is not yet known, the
+//! circle's kind), the bits below the leading one raw; read by table lookup with a 64-bit bit
+//! buffer. Compared on the same values with version 2's stream (its adaptive binary range coder)
+//! and version 1's varints, for bytes and for parse time. Prints one table row per bound:
 //! `cargo run --release -p circletree-core --example v3_candidate -- 10 25 100`
 //! (`CT_DATA=holdout` for the held-out set, `CT_WITHIN=1` for `encode_within`'s values).
 //!
-//! Symbols (alphabet 0..128: `kind * 64 + class difference + 32`, clamped):
+//! Symbols ([`sym`]: alphabet 0..128, `kind * 64 + flip * 32 + class difference + 16`, with
+//! escapes for differences beyond -15..=14):
 //! - table A, one a circle: a point's x class against the previous point's x class (kind 0), or a
 //!   circle's radius class against the previous radius class (kind 1);
 //! - table B: a circle's x class against `class(r) - 1`;
@@ -15,7 +16,7 @@
 //!   class against `class(r) - 1`.
 #[path = "../tests/common/mod.rs"]
 mod common;
-use circletree_core::encode::{encode, encode_within, Options};
+use circletree_core::coder::class;
 use circletree_core::format::{v2, Circle, Cursor};
 use std::collections::BinaryHeap;
 use std::hint::black_box;
@@ -23,10 +24,6 @@ use std::time::Instant;
 
 const LIMIT: u32 = 11;
 const NSYM: usize = 128;
-
-fn class(u: u64) -> u32 {
-    64 - u.leading_zeros()
-}
 
 /// Symbol of an integer of class `k` against the prediction `pred`: bit 6 the circle's kind
 /// (table A), bit 5 "the sign differs from the last nonzero integer's of this table", bits 0-4 the
@@ -446,21 +443,12 @@ fn main() {
     println!("|---|---|---|---|---|---|---|---|---|---|---|");
     for t in std::env::args().skip(1) {
         let t: f64 = t.parse().expect("a bound");
-        let o = Options {
-            min_radius: t / 2.0,
-            overlap: 0.4,
-            dp_tolerance: Some(t),
-            max_error: None,
-        };
         let (mut b1, mut b2, mut b3, mut n) = (0, 0, 0, 0);
         let (mut coded, mut entropy) = (0.0, 0.0);
         let mut streams = Vec::new();
         for s in &samples {
-            let (mut ct, _) = if std::env::var_os("CT_WITHIN").is_some() {
-                encode_within(&s.wkb, s.srid, t, None, &mut || {}).expect("encodes")
-            } else {
-                encode(&s.wkb, s.srid, &o, &mut || {}).expect("encodes")
-            };
+            let within = std::env::var_os("CT_WITHIN").is_some();
+            let (mut ct, _) = common::encode_at(s, t, within).expect("encodes");
             n += ct.ncircles();
             let bytes2 = ct.to_bytes();
             let total2 = bytes2.len();

@@ -35,6 +35,17 @@ impl Default for Bit {
 }
 
 impl Bit {
+    /// The probability after coding `bit`, chosen without a branch on `bit` (an adaptive bit is
+    /// often a coin toss, and a mispredicted branch costs more than the decision itself).
+    #[inline(always)]
+    fn after(self, bit: bool) -> Bit {
+        let p = self.0;
+        Bit(
+            std::hint::select_unpredictable(bit, p - (p >> RATE), p + ((ONE - p) >> RATE))
+                .clamp(32, ONE - 32),
+        )
+    }
+
     /// Bits the next symbol would cost (for the encoder's cost function).
     pub fn cost(&self, bit: bool) -> f64 {
         let p = self.0 as f64 / ONE as f64;
@@ -121,7 +132,8 @@ impl IntModel {
     }
 }
 
-fn class(u: u64) -> u32 {
+/// The class of `u`: its bit length, 0 for zero.
+pub fn class(u: u64) -> u32 {
     64 - u.leading_zeros()
 }
 
@@ -180,15 +192,11 @@ impl Writer {
     #[inline(always)]
     fn bit(&mut self, m: &mut Bit, b: bool) {
         let bound = (self.range >> PRECISION) * u32::from(m.0);
-        let p = m.0;
-        let (add, range, q) = std::hint::select_unpredictable(
-            b,
-            (bound, self.range - bound, p - (p >> RATE)),
-            (0, bound, p + ((ONE - p) >> RATE)),
-        );
+        let (add, range) =
+            std::hint::select_unpredictable(b, (bound, self.range - bound), (0, bound));
         self.low += u64::from(add);
         self.range = range;
-        m.0 = q.clamp(32, ONE - 32);
+        *m = m.after(b);
         self.normalize();
     }
 
@@ -308,28 +316,18 @@ impl<'a> Reader<'a> {
         debug_assert!(self.range >= TOP);
     }
 
-    /// One adaptive decision, without a branch on its outcome (which is often a coin toss, and a
-    /// mispredicted branch costs more than the decision itself).
+    /// One adaptive decision, without a branch on its outcome.
     #[inline(always)]
-    fn decide(&mut self, m: &mut Bit) -> bool {
+    fn bit(&mut self, m: &mut Bit) -> bool {
         let bound = (self.range >> PRECISION) * u32::from(m.0);
         let b = self.code >= bound;
-        let p = m.0;
-        let (range, taken, q) = std::hint::select_unpredictable(
-            b,
-            (self.range - bound, bound, p - (p >> RATE)),
-            (bound, 0, p + ((ONE - p) >> RATE)),
-        );
+        let (range, taken) =
+            std::hint::select_unpredictable(b, (self.range - bound, bound), (bound, 0));
         self.range = range;
         self.code -= taken;
-        m.0 = q.clamp(32, ONE - 32);
+        *m = m.after(b);
         self.normalize();
         b
-    }
-
-    #[inline(always)]
-    fn bit(&mut self, m: &mut Bit) -> Result<bool> {
-        Ok(self.decide(m))
     }
 
     #[inline(always)]
@@ -353,7 +351,7 @@ impl<'a> Reader<'a> {
     /// Read a flag.
     #[inline(always)]
     pub fn flag(&mut self, m: &mut Bit) -> Result<bool> {
-        self.bit(m)
+        Ok(self.bit(m))
     }
 
     /// Read an integer.
@@ -361,18 +359,18 @@ impl<'a> Reader<'a> {
     pub fn int(&mut self, m: &mut IntModel) -> Result<i64> {
         let pred = m.prev_class;
         let ctx = m.prev_move;
-        let k = if self.bit(&mut m.same[ctx])? {
+        let k = if self.bit(&mut m.same[ctx]) {
             m.prev_move = 0;
             pred
         } else {
-            let up = self.bit(&mut m.up[ctx])?;
+            let up = self.bit(&mut m.up[ctx]);
             let max = if up {
                 64 - pred - 1
             } else {
                 pred.saturating_sub(1)
             };
             let mut d = 0;
-            while d < max && self.bit(&mut m.unary[(d as usize).min(11)])? {
+            while d < max && self.bit(&mut m.unary[(d as usize).min(11)]) {
                 d += 1;
             }
             m.prev_move = if up { 1 } else { 2 };
@@ -391,13 +389,13 @@ impl<'a> Reader<'a> {
             0 => 0,
             1 => 1,
             _ => {
-                let top = u64::from(self.bit(&mut m.top[k as usize])?);
+                let top = u64::from(self.bit(&mut m.top[k as usize]));
                 let rest = self.raw(k - 2)?;
                 (1 << (k - 1)) | (top << (k - 2)) | rest
             }
         };
         let v = if u != 0 {
-            let neg = self.bit(&mut m.sign[m.prev_sign])?;
+            let neg = self.bit(&mut m.sign[m.prev_sign]);
             m.prev_sign = if neg { 2 } else { 1 };
             let v = i64::try_from(u).map_err(|_| corrupt())?;
             if neg {

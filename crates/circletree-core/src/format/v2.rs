@@ -13,7 +13,7 @@
 //! deltas from the bounding box and the number of circles, the radii from `min_radius`.
 
 use super::{Circle, Cursor};
-use crate::coder::{Bit, IntModel, Reader, Writer};
+use crate::coder::{class, Bit, IntModel, Reader, Writer};
 use crate::error::{Error, Result};
 
 /// Adaptive models of the stream, in their starting state for a value.
@@ -24,10 +24,6 @@ pub struct Models {
     delta: [[[IntModel; 2]; 2]; 2],
     radius: IntModel,
     prev_circle: bool,
-}
-
-fn class(v: u64) -> u32 {
-    64 - v.leading_zeros()
 }
 
 impl Models {

@@ -1,8 +1,29 @@
 //! Shared by the integration tests and benches: the real polygons shipped in tests/data.
 #![allow(dead_code)]
 
+use circletree_core::encode::{encode, encode_within, Options, Report};
+use circletree_core::format::CircleTree;
 use std::io::Read;
 use std::str::FromStr;
+
+/// A sample encoded at bound `t` as the benchmarks compare encoders: `ct_encode(geom, t/2, 0.4,
+/// t)`, or with `within`, `ct_encode_within(geom, t)`.
+pub fn encode_at(
+    s: &Sample,
+    t: f64,
+    within: bool,
+) -> circletree_core::Result<(CircleTree, Report)> {
+    if within {
+        return encode_within(&s.wkb, s.srid, t, None, &mut || {});
+    }
+    let o = Options {
+        min_radius: t / 2.0,
+        overlap: 0.4,
+        dp_tolerance: Some(t),
+        max_error: None,
+    };
+    encode(&s.wkb, s.srid, &o, &mut || {})
+}
 
 /// One real polygon: name, SRID, ST_NPoints, WKB.
 pub struct Sample {
