@@ -53,31 +53,90 @@ fn run_at(ring: &[Pt], c: Pt, rho: f64, seed: usize, tol: f64) -> (usize, usize)
     if !on_circle(ring[seed], c, r, tol) {
         return (seed, 0);
     }
+    // The run stops before it turns 1.9 half-turns around the centre. The turn is a sum of
+    // `atan2`s (the costliest step of the walk), so it is summed only once a cheap upper bound
+    // of it could reach the limit; then from the first edge, in the walk's order, so that it is
+    // the same sum to the bit.
+    let limit = std::f64::consts::PI * 1.9;
+    let edge = |e: usize| sweep(ring[e % n], ring[(e + 1) % n], c);
+    let exact = |fwd: usize, back: usize| {
+        let mut a = 0.0;
+        for k in 0..fwd {
+            a += edge(seed + k);
+        }
+        for j in 0..back {
+            a += edge(seed + 2 * n - 1 - j);
+        }
+        a
+    };
+    let mut bound = 0.0;
+    let mut angle: Option<f64> = None;
     let mut len = 0;
-    let mut angle = 0.0;
     let mut i = seed;
     while len < n && edge_ok(i) {
-        angle += sweep(ring[i], ring[(i + 1) % n], c);
-        if angle >= std::f64::consts::PI * 1.9 {
+        let turned = match angle.as_mut() {
+            Some(a) => {
+                *a += edge(i);
+                *a
+            }
+            None => {
+                bound += sweep_bound(ring[i], ring[(i + 1) % n], c);
+                if bound < limit {
+                    0.0
+                } else {
+                    *angle.insert(exact(len + 1, 0))
+                }
+            }
+        };
+        if turned >= limit {
             break;
         }
         len += 1;
         i = (i + 1) % n;
     }
+    let fwd = len;
     let mut start = seed;
     while len < n {
         let prev = (start + n - 1) % n;
         if !edge_ok(prev) {
             break;
         }
-        angle += sweep(ring[prev], ring[start], c);
-        if angle >= std::f64::consts::PI * 1.9 {
+        let turned = match angle.as_mut() {
+            Some(a) => {
+                *a += edge(prev);
+                *a
+            }
+            None => {
+                bound += sweep_bound(ring[prev], ring[start], c);
+                if bound < limit {
+                    0.0
+                } else {
+                    *angle.insert(exact(fwd, len - fwd + 1))
+                }
+            }
+        };
+        if turned >= limit {
             break;
         }
         start = prev;
         len += 1;
     }
     (start, len)
+}
+
+/// An upper bound of [`sweep`] without `atan2`: the angle's tangent (a turn below a right
+/// angle), else a half turn; widened far beyond the rounding of either, summed over a whole ring.
+fn sweep_bound(a: Pt, b: Pt, c: Pt) -> f64 {
+    let (ua, ub) = ([a[0] - c[0], a[1] - c[1]], [b[0] - c[0], b[1] - c[1]]);
+    let (cross, dot) = (
+        (ua[0] * ub[1] - ua[1] * ub[0]).abs(),
+        ua[0] * ub[0] + ua[1] * ub[1],
+    );
+    if dot > 0.0 {
+        cross / dot * (1.0 + 1e-6)
+    } else {
+        std::f64::consts::PI
+    }
 }
 
 fn sweep(a: Pt, b: Pt, c: Pt) -> f64 {
@@ -245,6 +304,24 @@ pub fn select(n: usize, mut runs: Vec<Mapped>, overlap: f64) -> Vec<Mapped> {
 mod tests {
     use super::*;
     use crate::medial::candidates;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The walk sums exact turns only once the bound could reach the limit: the bound must
+        /// never be below the turn, whatever the edge (short or long, near or far, UTM-sized).
+        #[test]
+        fn the_turn_bound_is_never_below_the_turn(
+            c in (-1e7f64..1e7, -1e7f64..1e7),
+            a in (-1e4f64..1e4, -1e4f64..1e4),
+            b in (-1e4f64..1e4, -1e4f64..1e4),
+            scale in prop::sample::select(vec![1e-6, 1e-3, 1.0, 1e3]),
+        ) {
+            let c = [c.0, c.1];
+            let a = [c[0] + a.0 * scale, c[1] + a.1 * scale];
+            let b = [c[0] + b.0 * scale, c[1] + b.1 * scale];
+            prop_assert!(sweep_bound(a, b, c) >= sweep(a, b, c));
+        }
+    }
 
     fn buffer_disc(r: f64, segs_per_quarter: usize) -> Vec<Pt> {
         let n = 4 * segs_per_quarter;
