@@ -53,13 +53,10 @@ fn run_at(ring: &[Pt], c: Pt, rho: f64, seed: usize, tol: f64) -> (usize, usize)
     if !on_circle(ring[seed], c, r, tol) {
         return (seed, 0);
     }
-    // The run stops before it turns 1.9 half-turns around the centre. The turn is a sum of
-    // `atan2`s (the costliest step of the walk), so it is summed only once a cheap upper bound
-    // of it could reach the limit; then from the first edge, in the walk's order, so that it is
-    // the same sum to the bit.
-    let limit = std::f64::consts::PI * 1.9;
-    let edge = |e: usize| sweep(ring[e % n], ring[(e + 1) % n], c);
+    // the exact turn of the first `fwd` edges forward from the seed, then `back` edges backward,
+    // in the walk's order
     let exact = |fwd: usize, back: usize| {
+        let edge = |e: usize| sweep(ring[e % n], ring[(e + 1) % n], c);
         let mut a = 0.0;
         for k in 0..fwd {
             a += edge(seed + k);
@@ -69,26 +66,11 @@ fn run_at(ring: &[Pt], c: Pt, rho: f64, seed: usize, tol: f64) -> (usize, usize)
         }
         a
     };
-    let mut bound = 0.0;
-    let mut angle: Option<f64> = None;
+    let mut turn = Turn::default();
     let mut len = 0;
     let mut i = seed;
     while len < n && edge_ok(i) {
-        let turned = match angle.as_mut() {
-            Some(a) => {
-                *a += edge(i);
-                *a
-            }
-            None => {
-                bound += sweep_bound(ring[i], ring[(i + 1) % n], c);
-                if bound < limit {
-                    0.0
-                } else {
-                    *angle.insert(exact(len + 1, 0))
-                }
-            }
-        };
-        if turned >= limit {
+        if turn.reaches_limit(ring[i], ring[(i + 1) % n], c, || exact(len + 1, 0)) {
             break;
         }
         len += 1;
@@ -98,24 +80,9 @@ fn run_at(ring: &[Pt], c: Pt, rho: f64, seed: usize, tol: f64) -> (usize, usize)
     let mut start = seed;
     while len < n {
         let prev = (start + n - 1) % n;
-        if !edge_ok(prev) {
-            break;
-        }
-        let turned = match angle.as_mut() {
-            Some(a) => {
-                *a += edge(prev);
-                *a
-            }
-            None => {
-                bound += sweep_bound(ring[prev], ring[start], c);
-                if bound < limit {
-                    0.0
-                } else {
-                    *angle.insert(exact(fwd, len - fwd + 1))
-                }
-            }
-        };
-        if turned >= limit {
+        if !edge_ok(prev)
+            || turn.reaches_limit(ring[prev], ring[start], c, || exact(fwd, len - fwd + 1))
+        {
             break;
         }
         start = prev;
@@ -124,26 +91,60 @@ fn run_at(ring: &[Pt], c: Pt, rho: f64, seed: usize, tol: f64) -> (usize, usize)
     (start, len)
 }
 
+/// A run stops before it turns this far around its centre (1.9 half-turns).
+const TURN_LIMIT: f64 = std::f64::consts::PI * 1.9;
+
+/// How far a run has turned around its centre. The turn is a sum of `atan2`s (the costliest step
+/// of the walk), so it is summed only once a cheap upper bound of it could reach the limit; then
+/// from the run's first edge in the walk's order, so that it is the same sum to the bit.
+#[derive(Default)]
+struct Turn {
+    bound: f64,
+    exact: Option<f64>,
+}
+
+impl Turn {
+    /// Walk edge `a`-`b` around `c`: has the run now turned [`TURN_LIMIT`]? `so_far` gives the
+    /// exact turn of every edge walked, this one included, in the walk's order.
+    fn reaches_limit(&mut self, a: Pt, b: Pt, c: Pt, so_far: impl FnOnce() -> f64) -> bool {
+        let turned = match self.exact.as_mut() {
+            Some(t) => {
+                *t += sweep(a, b, c);
+                *t
+            }
+            None => {
+                self.bound += sweep_bound(a, b, c);
+                if self.bound < TURN_LIMIT {
+                    return false;
+                }
+                *self.exact.insert(so_far())
+            }
+        };
+        turned >= TURN_LIMIT
+    }
+}
+
+/// The cross and dot products of `a` and `b` seen from `c`.
+fn cross_dot(a: Pt, b: Pt, c: Pt) -> (f64, f64) {
+    let (ua, ub) = ([a[0] - c[0], a[1] - c[1]], [b[0] - c[0], b[1] - c[1]]);
+    (ua[0] * ub[1] - ua[1] * ub[0], ua[0] * ub[0] + ua[1] * ub[1])
+}
+
 /// An upper bound of [`sweep`] without `atan2`: the angle's tangent (a turn below a right
 /// angle), else a half turn; widened far beyond the rounding of either, summed over a whole ring.
 fn sweep_bound(a: Pt, b: Pt, c: Pt) -> f64 {
-    let (ua, ub) = ([a[0] - c[0], a[1] - c[1]], [b[0] - c[0], b[1] - c[1]]);
-    let (cross, dot) = (
-        (ua[0] * ub[1] - ua[1] * ub[0]).abs(),
-        ua[0] * ub[0] + ua[1] * ub[1],
-    );
+    let (cross, dot) = cross_dot(a, b, c);
     if dot > 0.0 {
-        cross / dot * (1.0 + 1e-6)
+        cross.abs() / dot * (1.0 + 1e-6)
     } else {
         std::f64::consts::PI
     }
 }
 
+/// The angle edge `a`-`b` turns around `c`.
 fn sweep(a: Pt, b: Pt, c: Pt) -> f64 {
-    let (ua, ub) = ([a[0] - c[0], a[1] - c[1]], [b[0] - c[0], b[1] - c[1]]);
-    (ua[0] * ub[1] - ua[1] * ub[0])
-        .atan2(ua[0] * ub[0] + ua[1] * ub[1])
-        .abs()
+    let (cross, dot) = cross_dot(a, b, c);
+    cross.atan2(dot).abs()
 }
 
 /// Steps 1-2: runs of at least two edges for each candidate, radius averaged over its run.
