@@ -71,6 +71,154 @@ pub fn segment_max_in(to: &[(Pt, Pt)], a: Pt, b: Pt, floor: f64, eps: f64) -> f6
     )
 }
 
+/// Segments prepared for [`Capsules::covers`]: each with its unit direction and length, and the
+/// box of the points within `r` of it.
+pub struct Capsules {
+    segs: Vec<CapSeg>,
+    r: f64,
+    cover: Vec<(f64, f64)>,
+}
+
+struct CapSeg {
+    c: Pt,
+    e: Pt,
+    u: Pt,
+    len: f64,
+    bbox: [f64; 4],
+}
+
+impl Capsules {
+    /// The capsules of radius `r` around the segments `to`.
+    pub fn new(to: &[(Pt, Pt)], r: f64) -> Capsules {
+        let segs = to
+            .iter()
+            .map(|&(c, e)| {
+                let v = [e[0] - c[0], e[1] - c[1]];
+                let len = (v[0] * v[0] + v[1] * v[1]).sqrt();
+                let u = if len > 0.0 {
+                    [v[0] / len, v[1] / len]
+                } else {
+                    [0.0, 0.0]
+                };
+                CapSeg {
+                    c,
+                    e,
+                    u,
+                    len,
+                    bbox: [
+                        c[0].min(e[0]) - r,
+                        c[1].min(e[1]) - r,
+                        c[0].max(e[0]) + r,
+                        c[1].max(e[1]) + r,
+                    ],
+                }
+            })
+            .collect();
+        Capsules {
+            segs,
+            r,
+            cover: Vec::with_capacity(to.len()),
+        }
+    }
+
+    /// Is every point of segment `a-b` within `r` of the segments? Exact up to rounding, with no
+    /// search: the points within `r` of one segment (its capsule) form a convex set, so they meet
+    /// `a-b` in one interval of its parameter, and `a-b` lies within `r` of the segments exactly
+    /// when those intervals cover `[0, 1]`. O(k log k) for k segments, where [`segment_max_in`]'s
+    /// bisection asks a nearest-segment query of all k at every midpoint it visits.
+    pub fn covers(&mut self, a: Pt, b: Pt) -> bool {
+        let d = [b[0] - a[0], b[1] - a[1]];
+        let dd = d[0] * d[0] + d[1] * d[1];
+        let (r, r2) = (self.r, self.r * self.r);
+        if dd == 0.0 {
+            return self
+                .segs
+                .iter()
+                .any(|s| dist2_to_segment(a, s.c, s.e) <= r2);
+        }
+        let bb = [
+            a[0].min(b[0]),
+            a[1].min(b[1]),
+            a[0].max(b[0]),
+            a[1].max(b[1]),
+        ];
+        self.cover.clear();
+        for s in &self.segs {
+            if s.bbox[0] > bb[2] || s.bbox[2] < bb[0] || s.bbox[1] > bb[3] || s.bbox[3] < bb[1] {
+                continue;
+            }
+            if let Some(iv) = s.interval(a, d, dd, r, r2) {
+                self.cover.push(iv);
+            }
+        }
+        self.cover.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
+        let mut reach = 0.0;
+        for &(lo, hi) in self.cover.iter() {
+            if lo > reach {
+                return false;
+            }
+            if hi > reach {
+                reach = hi;
+                if reach >= 1.0 {
+                    return true;
+                }
+            }
+        }
+        false
+    }
+}
+
+impl CapSeg {
+    /// The interval of `t` for which `a + t·d` (`dd = |d|²`) lies within `r` of the segment,
+    /// clipped to `[0, 1]`, if not empty: the union of the parameters inside the discs at its
+    /// ends and inside the rectangle between them, one interval since the capsule is convex.
+    fn interval(&self, a: Pt, d: Pt, dd: f64, r: f64, r2: f64) -> Option<(f64, f64)> {
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut disc = |p: Pt| {
+            let w = [a[0] - p[0], a[1] - p[1]];
+            let half_b = w[0] * d[0] + w[1] * d[1];
+            let disc = half_b * half_b - dd * (w[0] * w[0] + w[1] * w[1] - r2);
+            if disc >= 0.0 {
+                let s = disc.sqrt();
+                lo = lo.min((-half_b - s) / dd);
+                hi = hi.max((-half_b + s) / dd);
+            }
+        };
+        disc(self.c);
+        disc(self.e);
+        if self.len > 0.0 {
+            let (u, w) = (self.u, [a[0] - self.c[0], a[1] - self.c[1]]);
+            // along the segment: 0 <= w·u + t d·u <= len; across it: |w×u + t d×u| <= r
+            let (mut t0, mut t1) = (f64::NEG_INFINITY, f64::INFINITY);
+            let mut clip = |alpha: f64, beta: f64, min: f64, max: f64| {
+                if beta == 0.0 {
+                    if alpha < min || alpha > max {
+                        t0 = f64::INFINITY;
+                    }
+                } else {
+                    let (x, y) = ((min - alpha) / beta, (max - alpha) / beta);
+                    let (x, y) = if beta > 0.0 { (x, y) } else { (y, x) };
+                    t0 = t0.max(x);
+                    t1 = t1.min(y);
+                }
+            };
+            clip(
+                w[0] * u[0] + w[1] * u[1],
+                d[0] * u[0] + d[1] * u[1],
+                0.0,
+                self.len,
+            );
+            clip(w[0] * u[1] - w[1] * u[0], d[0] * u[1] - d[1] * u[0], -r, r);
+            if t0 <= t1 {
+                lo = lo.min(t0);
+                hi = hi.max(t1);
+            }
+        }
+        let (lo, hi) = (lo.max(0.0), hi.min(1.0));
+        (lo <= hi).then_some((lo, hi))
+    }
+}
+
 /// Branch and bound for the largest distance along segment `a-b`. `nearest(p)` gives the distance
 /// from `p` to the target set and the object that realises it; `far(o, a, b)` the larger distance
 /// from `a` or `b` to that one object. Two bounds prune the search: distance is 1-Lipschitz
@@ -207,6 +355,50 @@ mod tests {
         ];
         let h2 = directed_hausdorff(&[&a], &[&c], 1e-9, &mut || {});
         assert!((h2 - 5.0 / 26f64.sqrt()).abs() < 1e-6, "{h2}");
+    }
+
+    #[test]
+    fn capsules_cover_a_segment_inside_and_not_one_that_leaves() {
+        // an L-shaped chain; a segment along its corner and one cutting it
+        let to = [([0.0, 0.0], [10.0, 0.0]), ([10.0, 0.0], [10.0, 10.0])];
+        let mut caps = Capsules::new(&to, 1.0);
+        assert!(caps.covers([1.0, 0.5], [9.5, 0.5]));
+        assert!(caps.covers([9.5, 1.0], [9.5, 9.0]));
+        assert!(caps.covers([9.2, 0.2], [9.2, 0.2]));
+        // its middle, (6, 4), is 4 from both legs
+        assert!(!caps.covers([2.0, 0.0], [10.0, 8.0]));
+        // beyond the chain's end
+        assert!(!caps.covers([5.0, 0.0], [12.0, 0.0]));
+        assert!(caps.covers([5.0, 0.0], [10.9, 0.0]));
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn capsules_agree_with_the_bisection(
+            pts in proptest::collection::vec((-20.0f64..20.0, -20.0f64..20.0), 2..8),
+            ends in ((0usize..8, 0.0f64..1.0), (0usize..8, 0.0f64..1.0)),
+            off in ((-1.0f64..1.0, -1.0f64..1.0), (-1.0f64..1.0, -1.0f64..1.0)),
+            r in 0.5f64..15.0,
+        ) {
+            let to: Vec<(Pt, Pt)> = pts
+                .windows(2)
+                .map(|w| ([w[0].0, w[0].1], [w[1].0, w[1].1]))
+                .collect();
+            // the segment's ends near points of the chain, so that both answers occur
+            let near = |(i, t): (usize, f64), (dx, dy): (f64, f64)| {
+                let (c, e) = to[i % to.len()];
+                [
+                    c[0] + t * (e[0] - c[0]) + dx * r,
+                    c[1] + t * (e[1] - c[1]) + dy * r,
+                ]
+            };
+            let (a, b) = (near(ends.0, off.0), near(ends.1, off.1));
+            let max = segment_max_in(&to, a, b, 0.0, 1e-9);
+            let covered = Capsules::new(&to, r).covers(a, b);
+            if (max - r).abs() > 1e-6 {
+                proptest::prop_assert_eq!(covered, max <= r, "max {} r {}", max, r);
+            }
+        }
     }
 
     #[test]

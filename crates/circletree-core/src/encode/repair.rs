@@ -11,7 +11,7 @@ use crate::error::Result;
 use crate::format::Circle;
 use crate::geometry::{dist2_to_segment, Pt, Shape};
 use crate::grid::Grid;
-use crate::metrics::{segment_max, segment_max_in};
+use crate::metrics::{segment_max, Capsules};
 use crate::reconstruct::{ring_spans, stroke_spans};
 use crate::validity::{point_in_ring, problems_where, RingRef, Touches};
 use rstar::primitives::Line;
@@ -202,7 +202,8 @@ fn all_within(
     eps: f64,
 ) -> bool {
     if to.len() <= BRUTE_FORCE_LIMIT {
-        from.all(|(a, b)| segment_max_in(to, a, b, target, eps) <= target + eps)
+        let mut caps = Capsules::new(to, target + eps);
+        from.all(|(a, b)| caps.covers(a, b))
     } else {
         let tree: RTree<Line<[f64; 2]>> =
             RTree::bulk_load(to.iter().map(|&(c, d)| Line::new(c, d)).collect());
