@@ -42,12 +42,14 @@ fn run_at(ring: &[Pt], c: Pt, rho: f64, seed: usize, tol: f64) -> (usize, usize)
     let n = ring.len();
     let r = rho.abs();
     let sign = rho.signum();
-    let edge_ok = |i: usize| -> bool {
+    // Edge `i` hugs the circle: it turns the circle's way, and its new end (`b` walking forward,
+    // `a` backward) and its middle are on the circle. The other end is the run's last vertex,
+    // already tested (the seed, before the walk).
+    let edge_ok = |i: usize, forward: bool| -> bool {
         let (a, b) = (ring[i], ring[(i + 1) % n]);
         let cross = (a[0] - c[0]) * (b[1] - c[1]) - (a[1] - c[1]) * (b[0] - c[0]);
         cross * sign > 0.0
-            && on_circle(b, c, r, tol)
-            && on_circle(a, c, r, tol)
+            && on_circle(if forward { b } else { a }, c, r, tol)
             && on_circle([(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0], c, r, tol)
     };
     if !on_circle(ring[seed], c, r, tol) {
@@ -69,7 +71,7 @@ fn run_at(ring: &[Pt], c: Pt, rho: f64, seed: usize, tol: f64) -> (usize, usize)
     let mut turn = Turn::default();
     let mut len = 0;
     let mut i = seed;
-    while len < n && edge_ok(i) {
+    while len < n && edge_ok(i, true) {
         if turn.reaches_limit(ring[i], ring[(i + 1) % n], c, || exact(len + 1, 0)) {
             break;
         }
@@ -80,7 +82,7 @@ fn run_at(ring: &[Pt], c: Pt, rho: f64, seed: usize, tol: f64) -> (usize, usize)
     let mut start = seed;
     while len < n {
         let prev = (start + n - 1) % n;
-        if !edge_ok(prev)
+        if !edge_ok(prev, false)
             || turn.reaches_limit(ring[prev], ring[start], c, || exact(fwd, len - fwd + 1))
         {
             break;
