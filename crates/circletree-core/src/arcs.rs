@@ -34,6 +34,8 @@ struct Piece {
     /// Position in the ring's sequence of pieces (degenerate lines dropped).
     pos: usize,
     seg: Seg,
+    /// The piece's box, padded by `eps` (computed once: it is both indexed and queried).
+    bbox: Bbox,
 }
 
 fn arc_box(c: Pt, r: f64, a0: f64, sweep: f64, from: Pt, to: Pt) -> [f64; 4] {
@@ -94,11 +96,29 @@ fn on_arc(p: Pt, c: Pt, r: f64, a0: f64, sweep: f64, eps: f64) -> bool {
     on_arc_angle((p[1] - c[1]).atan2(p[0] - c[0]), a0, sweep, eps / r)
 }
 
+/// At most three points, without an allocation (the checks ask for them pair by pair).
+#[derive(Default)]
+struct Few {
+    pts: [Pt; 3],
+    n: usize,
+}
+
+impl Few {
+    fn push(&mut self, p: Pt) {
+        self.pts[self.n] = p;
+        self.n += 1;
+    }
+
+    fn iter(&self) -> std::slice::Iter<'_, Pt> {
+        self.pts[..self.n].iter()
+    }
+}
+
 /// Points where the line `a-b` meets the circle (to `eps`).
-fn line_circle(a: Pt, b: Pt, c: Pt, r: f64, eps: f64) -> Vec<Pt> {
+fn line_circle(a: Pt, b: Pt, c: Pt, r: f64, eps: f64) -> Few {
     let d = [b[0] - a[0], b[1] - a[1]];
     let len2 = d[0] * d[0] + d[1] * d[1];
-    let mut out = Vec::new();
+    let mut out = Few::default();
     if len2 == 0.0 {
         return out;
     }
@@ -127,22 +147,22 @@ fn line_circle(a: Pt, b: Pt, c: Pt, r: f64, eps: f64) -> Vec<Pt> {
 }
 
 /// Points where two circles meet (to `eps`); `None` when they are the same circle.
-fn circle_circle(c1: Pt, r1: f64, c2: Pt, r2: f64, eps: f64) -> Option<Vec<Pt>> {
+fn circle_circle(c1: Pt, r1: f64, c2: Pt, r2: f64, eps: f64) -> Option<Few> {
     let d = (c2[0] - c1[0]).hypot(c2[1] - c1[1]);
     if d <= eps && (r1 - r2).abs() <= eps {
         return None;
     }
     if d > r1 + r2 + eps || d < (r1 - r2).abs() - eps || d == 0.0 {
-        return Some(vec![]);
+        return Some(Few::default());
     }
     let u = [(c2[0] - c1[0]) / d, (c2[1] - c1[1]) / d];
     let a = (d * d + r1 * r1 - r2 * r2) / (2.0 * d);
     let h = (r1 * r1 - a * a).max(0.0).sqrt();
     let m = [c1[0] + a * u[0], c1[1] + a * u[1]];
-    Some(vec![
-        [m[0] - h * u[1], m[1] + h * u[0]],
-        [m[0] + h * u[1], m[1] - h * u[0]],
-    ])
+    let mut out = Few::default();
+    out.push([m[0] - h * u[1], m[1] + h * u[0]]);
+    out.push([m[0] + h * u[1], m[1] - h * u[0]]);
+    Some(out)
 }
 
 fn near(p: Pt, q: Pt, eps: f64) -> bool {
@@ -228,6 +248,7 @@ pub fn problems(
                     span: s,
                     pos: v.len(),
                     seg: *seg,
+                    bbox: piece_box(seg, eps),
                 });
             }
         }
@@ -245,7 +266,7 @@ pub fn problems(
         pieces
             .iter()
             .flatten()
-            .map(|p| (piece_box(&p.seg, eps), (p.ring, p.pos)))
+            .map(|p| (p.bbox, (p.ring, p.pos)))
             .collect(),
     );
     let dirty = |p: &Piece| {
@@ -262,7 +283,7 @@ pub fn problems(
             continue;
         }
         let p_line = matches!(p.seg, Seg::Line(..));
-        tree.for_each_meeting(&piece_box(&p.seg, eps), |(k2, pos2)| {
+        tree.for_each_meeting(&p.bbox, |(k2, pos2)| {
             let q = &pieces[k2][pos2];
             if (p_line && matches!(q.seg, Seg::Line(..)))
                 || (k2, pos2) == (p.ring, p.pos)
@@ -271,17 +292,19 @@ pub fn problems(
                 // two lines: the stroke check's (`meet` says nothing of them)
                 return;
             }
-            let mut joints = Vec::new();
+            let (mut joints, mut nj) = ([[0.0; 2]; 2], 0);
             if k2 == p.ring {
                 let n = pieces[k2].len();
                 if (p.pos + 1) % n == pos2 {
-                    joints.push(p.seg.end());
+                    joints[nj] = p.seg.end();
+                    nj += 1;
                 }
                 if (pos2 + 1) % n == p.pos {
-                    joints.push(p.seg.start());
+                    joints[nj] = p.seg.start();
+                    nj += 1;
                 }
             }
-            if meet(&p.seg, &q.seg, &joints, eps) {
+            if meet(&p.seg, &q.seg, &joints[..nj], eps) {
                 bad.push((p.ring, p.span));
                 bad.push((k2, q.span));
             }
