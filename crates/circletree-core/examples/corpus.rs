@@ -1,6 +1,7 @@
 //! Encode every real polygon at one setting and print circles, bytes and time:
 //! `cargo run --release -p circletree-core --example corpus -- 5 0.4 10`; with `CT_WITHIN=1`,
-//! `encode_within` at the third number; `CT_NO_DECODE=1` skips the decode timing (for profiles).
+//! `encode_within` at the third number; `CT_NO_DECODE=1` skips the decode timing (for profiles);
+//! `CT_THREADS=1` never starts a second thread.
 #[path = "../tests/common/mod.rs"]
 mod common;
 use circletree_core::encode::{encode, encode_within, Options};
@@ -36,6 +37,10 @@ fn main() {
         }
         t.elapsed().as_secs_f64() / 5.0
     };
+    // CT_THREADS=1: never a second thread (to compare against the single-threaded path)
+    if let Ok(n) = std::env::var("CT_THREADS") {
+        circletree_core::parallel::set_threads(n.parse().expect("CT_THREADS: a number"));
+    }
     let only: Vec<String> = std::env::var("CT_ONLY")
         .map(|v| v.split(',').map(String::from).collect())
         .unwrap_or_default();

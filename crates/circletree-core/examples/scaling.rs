@@ -20,6 +20,10 @@ fn main() {
     } else {
         sizes
     };
+    // CT_THREADS=1: never a second thread (to compare against the single-threaded path)
+    if let Ok(n) = std::env::var("CT_THREADS") {
+        circletree_core::parallel::set_threads(n.parse().expect("CT_THREADS: a number"));
+    }
     for n in sizes {
         let mut seed = 12345u64;
         let radius = 10.0 * n as f64 / std::f64::consts::TAU;

@@ -22,6 +22,7 @@ pub mod grid;
 pub mod medial;
 pub mod metrics;
 pub mod min_points;
+pub mod parallel;
 pub mod picture;
 pub mod reconstruct;
 pub mod text;

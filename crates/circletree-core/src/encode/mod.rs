@@ -38,6 +38,7 @@ use crate::error::{Error, Result};
 use crate::format::{Circle, CircleTree, Params, MAX_STEPS};
 use crate::geometry::{orient, Pt, Shape};
 use crate::grid::Grid;
+use crate::parallel;
 use crate::touch;
 use crate::validity::{touch_key, Touches};
 use repair::{initial_rings, unchecked_parts, verify_and_repair, Context, Outcome, RingState};
@@ -216,7 +217,7 @@ pub fn encode_within_stored(
     // Repair only adds points and refining a grid only lengthens coordinates, so a start's price
     // is (all but always) a floor of its result: the next plan is run only while its price is
     // below the best result so far (a plan whose grid had to be refined usually is).
-    let mut plans = Vec::new();
+    let mut specs = Vec::new();
     let mut first_error = None;
     for fraction in WITHIN_GRIDS {
         // a plan whose grid cannot hold the coordinates is skipped (a coarser one may)
@@ -233,16 +234,50 @@ pub fn encode_within_stored(
         // the rounding is measured by `min_points` (each shortcut from its stored ends), so the
         // tolerance is the bound, less the loop's own measuring margin
         let tol = max_error - 4e-3 * grid.to_f64();
-        let plan = Plan {
+        specs.push(Plan {
             opts: Options {
                 dp_tolerance: Some(tol),
                 ..checked
             },
             circles: false,
             grid,
-        };
-        match unchecked(&prep, srid, &plan, max_error, interrupt) {
-            Ok((priced, start)) => plans.push((priced, plan, Some(start))),
+        });
+    }
+    // The plans are priced independently. On a large input the first plan (the coarsest grid,
+    // which most often wins) is priced and its loop run here while a second thread prices the
+    // others; the choice below is then made as if one thing were done after the other, so the
+    // value is the same (a run the order would not have needed is dropped).
+    let worth_it = prep.vertices >= PARALLEL_VERTICES && specs.len() > 1 && parallel::threads() > 1;
+    let price = |plan: &Plan, interrupt: &mut dyn FnMut()| {
+        let (result, plan) = (unchecked(&prep, srid, plan, max_error, interrupt), *plan);
+        (
+            result.map(|(priced, start)| (priced, Start::Rings(start))),
+            plan,
+        )
+    };
+    let (first, rest) = specs.split_at(specs.len().min(1));
+    let (mut priced, rest) = parallel::join(
+        worth_it,
+        interrupt,
+        |i| {
+            first
+                .iter()
+                .map(|p| match price(p, i) {
+                    (Ok((priced, Start::Rings(start))), plan) if worth_it => {
+                        let ran = run(&prep, srid, &plan, max_error, Some(start), i);
+                        (Ok((priced, Start::Ran(ran))), plan)
+                    }
+                    other => other,
+                })
+                .collect::<Vec<_>>()
+        },
+        |i| rest.iter().map(|p| price(p, i)).collect::<Vec<_>>(),
+    );
+    priced.extend(rest);
+    let mut plans = Vec::new();
+    for (result, plan) in priced {
+        match result {
+            Ok((priced, start)) => plans.push((priced, plan, start)),
             Err(e) => {
                 first_error.get_or_insert(e);
             }
@@ -257,7 +292,11 @@ pub fn encode_within_stored(
         {
             break;
         }
-        match run(&prep, srid, &plan, max_error, start, interrupt) {
+        let ran = match start {
+            Start::Ran(ran) => ran,
+            Start::Rings(start) => run(&prep, srid, &plan, max_error, Some(start), interrupt),
+        };
+        match ran {
             Ok((ct, report)) => {
                 // most starts need no repair: the result is then the value already written
                 let bytes = if ct == priced {
@@ -281,12 +320,22 @@ pub fn encode_within_stored(
     }
 }
 
+/// A priced plan's start: its rings before the loop, or the loop's outcome when already run.
+enum Start {
+    Rings((Vec<RingState>, Report)),
+    Ran(Result<(CircleTree, Report)>),
+}
+
 /// Grids `encode_within` tries, as fractions of max_error. 1.4 is about the coarsest allowed
 /// (rounding moves a point by up to 0.71 of a step, and the ring must stay within max_error of the
 /// stored points); finer grids leave room to skip more vertices where the rounding would otherwise
 /// use the bound. Measured on the corpus (bytes summed; 1.4 alone / these three / adding 1 and 0.4):
 /// 10 m 341,205 / 339,824 / 339,625; 25 m 235,173 / 234,417 / 234,293; 100 m 92,465 / 70,944 / 73,362.
 const WITHIN_GRIDS: [f64; 3] = [1.4, 0.8, 0.5];
+
+/// Inputs of at least this many vertices are worth a second thread ([`parallel`]): starting one
+/// costs tens of microseconds, and an input this large takes milliseconds per step.
+pub(crate) const PARALLEL_VERTICES: u64 = 5_000;
 
 /// Refuse lengths of a degree or more on a longitude/latitude SRID: no one means an error of 111 km,
 /// so they are metres given by mistake (`ct_encode(geom, 5, 0.4, 10)` on EPSG:4326 would otherwise

@@ -12,6 +12,7 @@ use crate::format::Circle;
 use crate::geometry::{dist2_to_segment, Pt, Shape};
 use crate::grid::Grid;
 use crate::metrics::{segment_max, Capsules};
+use crate::parallel;
 use crate::reconstruct::{ring_spans, stroke_spans};
 use crate::validity::{point_in_ring, problems_where, RingRef, Touches};
 use rstar::primitives::Line;
@@ -277,36 +278,70 @@ pub(super) fn initial_rings(
     report: &mut Report,
 ) -> Vec<RingState> {
     let shape = ctx.shape;
-    let mut rings: Vec<RingState> = Vec::new();
     report.filtered_circles = 0;
     report.dp_points = 0;
-    for (pi, part) in shape.parts.iter().enumerate() {
-        for (ri, ring) in part.iter().enumerate() {
-            let pinned = &ctx.pinned[pi][ri];
-            let entries = initial_entries(
-                ring,
-                pinned,
-                ctx.circles,
-                grid,
-                opts,
-                max_error,
-                interrupt,
-                report,
-            );
-            rings.push(RingState {
-                pts: ring.clone(),
-                part: pi,
-                index: ri,
-                entries,
-                circles: vec![],
-                recon: vec![],
-                span_of: vec![],
-                starts: vec![],
-                spans: vec![],
-                dirty: vec![],
-            });
-        }
-    }
+    let all: Vec<(usize, usize, &Vec<Pt>)> = shape
+        .parts
+        .iter()
+        .enumerate()
+        .flat_map(|(pi, part)| {
+            part.iter()
+                .enumerate()
+                .map(move |(ri, ring)| (pi, ri, ring))
+        })
+        .collect();
+    // Rings start independently: on a large input with several rings, the rings up to half the
+    // vertices here and the rest on a second thread (the same rings, in the same order).
+    let total: usize = all.iter().map(|r| r.2.len()).sum();
+    let mut seen = 0;
+    let split = all
+        .iter()
+        .position(|r| {
+            seen += r.2.len();
+            2 * seen >= total
+        })
+        .map_or(all.len(), |i| i + 1);
+    let (here, there) = all.split_at(split);
+    let start = |rings: &[(usize, usize, &Vec<Pt>)], interrupt: &mut dyn FnMut()| {
+        let mut report = Report::default();
+        let states: Vec<RingState> = rings
+            .iter()
+            .map(|&(pi, ri, ring)| {
+                let entries = initial_entries(
+                    ring,
+                    &ctx.pinned[pi][ri],
+                    ctx.circles,
+                    grid,
+                    opts,
+                    max_error,
+                    interrupt,
+                    &mut report,
+                );
+                RingState {
+                    pts: ring.clone(),
+                    part: pi,
+                    index: ri,
+                    entries,
+                    circles: vec![],
+                    recon: vec![],
+                    span_of: vec![],
+                    starts: vec![],
+                    spans: vec![],
+                    dirty: vec![],
+                }
+            })
+            .collect();
+        (states, report)
+    };
+    let ((mut rings, a), (rest, b)) = parallel::join(
+        total as u64 >= crate::encode::PARALLEL_VERTICES && !there.is_empty(),
+        interrupt,
+        |i| start(here, i),
+        |i| start(there, i),
+    );
+    rings.extend(rest);
+    report.filtered_circles = a.filtered_circles + b.filtered_circles;
+    report.dp_points = a.dp_points + b.dp_points;
     rings
 }
 
@@ -352,8 +387,7 @@ pub(super) fn verify_and_repair(
         round += 1;
         report.rounds = round;
         interrupt();
-        let mut failing: Vec<Vec<usize>> = vec![Vec::new(); rings.len()];
-        for (k, st) in rings.iter_mut().enumerate() {
+        for st in rings.iter_mut() {
             st.dirty = dirty_spans(&st.entries);
             if !st.dirty.iter().any(|&d| d) {
                 continue;
@@ -372,93 +406,20 @@ pub(super) fn verify_and_repair(
             st.starts = (0..=st.m())
                 .map(|s| st.span_of.partition_point(|&x| (x as usize) < s))
                 .collect();
-            // Hausdorff, both ways, span by span. Where the window holds only straight spans,
-            // the stroke is the geometry itself and the whole bound is available (arcs keep a
-            // grid step of it for the decoder's stroke).
-            let eps = g * 1e-3;
-            let straight_target = max_error - 3.0 * eps;
-            for s in 0..st.m() {
-                let t = if !ctx.circles && st.straight_window(s) {
-                    straight_target
-                } else {
-                    target
-                };
-                if st.dirty[s] && !st.span_fits(s, t, eps) {
-                    failing[k].push(s);
-                }
-            }
         }
         interrupt();
-        let mut problem_at: Option<Pt> = None;
-        {
-            let refs: Vec<RingRef> = rings
-                .iter()
-                .map(|r| RingRef {
-                    part: r.part,
-                    ring: r.index,
-                    pts: &r.recon,
-                })
-                .collect();
-            let changed: Vec<Vec<bool>> = rings
-                .iter()
-                .map(|r| {
-                    r.span_of
-                        .iter()
-                        .map(|&s| r.dirty.get(s as usize).copied().unwrap_or(true))
-                        .collect()
-                })
-                .collect();
-            let mut misplaced = Vec::new();
-            for (k, seg) in problems_where(&refs, Some(&changed), ctx.allowed, interrupt) {
-                if seg == usize::MAX {
-                    failing[k].extend(0..rings[k].entries.len());
-                    problem_at = problem_at.or(rings[k].recon.first().copied());
-                    misplaced.push(k);
-                } else if let Some(&s) = rings[k].span_of.get(seg) {
-                    failing[k].push(s as usize);
-                    problem_at = problem_at.or(rings[k].recon.get(seg).copied());
-                }
-            }
-            // A ring on the wrong side of another (a hole outside its shell, an island inside a
-            // neighbour) may be right where it is: the neighbour's rebuild can be what is wrong,
-            // even when this ring already keeps every vertex. Every ring whose rebuild and
-            // original disagree about the misplaced ring's probe is refined next to it too.
-            for k in misplaced {
-                let r = &rings[k].recon;
-                if r.len() < 2 {
-                    continue;
-                }
-                let p = [(r[0][0] + r[1][0]) / 2.0, (r[0][1] + r[1][1]) / 2.0];
-                for (h, other) in rings.iter().enumerate() {
-                    if h != k {
-                        if let Some(s) = other.wrong_side(p) {
-                            failing[h].push(s);
-                        }
-                    }
-                }
-            }
-        }
-        {
-            // The true arcs between the stroked points.
-            let refs: Vec<arcs::ArcRing> = rings
-                .iter()
-                .map(|r| arcs::ArcRing {
-                    spans: &r.spans,
-                    dirty: Some(&r.dirty),
-                })
-                .collect();
-            let probes: Vec<Pt> = rings
-                .iter()
-                .map(|r| r.recon.first().copied().unwrap_or([0.0, 0.0]))
-                .collect();
-            for (k, s) in arcs::problems(&refs, &probes, g, g * 1e-6, interrupt) {
-                if s == usize::MAX {
-                    failing[k].extend(0..rings[k].entries.len());
-                } else {
-                    failing[k].push(s);
-                }
-                problem_at = problem_at.or(rings[k].recon.first().copied());
-            }
+        // The distance checks and the validity checks read the same rebuilt rings and nothing
+        // else: on a large input they run side by side.
+        let segments: usize = rings.iter().map(|r| r.recon.len()).sum();
+        let rings_ref = &rings;
+        let (mut failing, (problems, problem_at)) = parallel::join(
+            segments as u64 >= crate::encode::PARALLEL_VERTICES,
+            interrupt,
+            |i| distance_failures(ctx, rings_ref, max_error, g, target, i),
+            |i| validity_failures(ctx, rings_ref, g, i),
+        );
+        for (k, s) in problems {
+            failing[k].push(s);
         }
         if failing.iter().all(Vec::is_empty) {
             let repaired = rings
@@ -486,6 +447,123 @@ pub(super) fn verify_and_repair(
             return Ok(Outcome::FinerGrid(problem_at));
         }
     }
+}
+
+/// Spans of each ring whose Hausdorff distance, both ways, is not proved within the bound.
+fn distance_failures(
+    ctx: &Context,
+    rings: &[RingState],
+    max_error: f64,
+    g: f64,
+    target: f64,
+    interrupt: &mut dyn FnMut(),
+) -> Vec<Vec<usize>> {
+    let mut failing: Vec<Vec<usize>> = vec![Vec::new(); rings.len()];
+    for (k, st) in rings.iter().enumerate() {
+        interrupt();
+        if !st.dirty.iter().any(|&d| d) {
+            continue;
+        }
+        // Hausdorff, both ways, span by span. Where the window holds only straight spans,
+        // the stroke is the geometry itself and the whole bound is available (arcs keep a
+        // grid step of it for the decoder's stroke).
+        let eps = g * 1e-3;
+        let straight_target = max_error - 3.0 * eps;
+        for s in 0..st.m() {
+            let t = if !ctx.circles && st.straight_window(s) {
+                straight_target
+            } else {
+                target
+            };
+            if st.dirty[s] && !st.span_fits(s, t, eps) {
+                failing[k].push(s);
+            }
+        }
+    }
+    failing
+}
+
+/// Spans (ring, span) that make the rebuild invalid, on the stroke or on the true arcs
+/// (`usize::MAX` spans are spread to the whole ring), and a point near the first problem.
+fn validity_failures(
+    ctx: &Context,
+    rings: &[RingState],
+    g: f64,
+    interrupt: &mut dyn FnMut(),
+) -> (Vec<(usize, usize)>, Option<Pt>) {
+    let mut failing: Vec<(usize, usize)> = Vec::new();
+    let mut problem_at: Option<Pt> = None;
+    {
+        let refs: Vec<RingRef> = rings
+            .iter()
+            .map(|r| RingRef {
+                part: r.part,
+                ring: r.index,
+                pts: &r.recon,
+            })
+            .collect();
+        let changed: Vec<Vec<bool>> = rings
+            .iter()
+            .map(|r| {
+                r.span_of
+                    .iter()
+                    .map(|&s| r.dirty.get(s as usize).copied().unwrap_or(true))
+                    .collect()
+            })
+            .collect();
+        let mut misplaced = Vec::new();
+        for (k, seg) in problems_where(&refs, Some(&changed), ctx.allowed, interrupt) {
+            if seg == usize::MAX {
+                failing.extend((0..rings[k].entries.len()).map(|s| (k, s)));
+                problem_at = problem_at.or(rings[k].recon.first().copied());
+                misplaced.push(k);
+            } else if let Some(&s) = rings[k].span_of.get(seg) {
+                failing.push((k, s as usize));
+                problem_at = problem_at.or(rings[k].recon.get(seg).copied());
+            }
+        }
+        // A ring on the wrong side of another (a hole outside its shell, an island inside a
+        // neighbour) may be right where it is: the neighbour's rebuild can be what is wrong,
+        // even when this ring already keeps every vertex. Every ring whose rebuild and
+        // original disagree about the misplaced ring's probe is refined next to it too.
+        for k in misplaced {
+            let r = &rings[k].recon;
+            if r.len() < 2 {
+                continue;
+            }
+            let p = [(r[0][0] + r[1][0]) / 2.0, (r[0][1] + r[1][1]) / 2.0];
+            for (h, other) in rings.iter().enumerate() {
+                if h != k {
+                    if let Some(s) = other.wrong_side(p) {
+                        failing.push((h, s));
+                    }
+                }
+            }
+        }
+    }
+    {
+        // The true arcs between the stroked points.
+        let refs: Vec<arcs::ArcRing> = rings
+            .iter()
+            .map(|r| arcs::ArcRing {
+                spans: &r.spans,
+                dirty: Some(&r.dirty),
+            })
+            .collect();
+        let probes: Vec<Pt> = rings
+            .iter()
+            .map(|r| r.recon.first().copied().unwrap_or([0.0, 0.0]))
+            .collect();
+        for (k, s) in arcs::problems(&refs, &probes, g, g * 1e-6, interrupt) {
+            if s == usize::MAX {
+                failing.extend((0..rings[k].entries.len()).map(|s| (k, s)));
+            } else {
+                failing.push((k, s));
+            }
+            problem_at = problem_at.or(rings[k].recon.first().copied());
+        }
+    }
+    (failing, problem_at)
 }
 
 /// Repair failing spans of one ring. `false` when no span had anything left to add or remove.
