@@ -7,6 +7,9 @@ use pgrx::prelude::*;
 /// `circletree.max_encode_memory`, in MB: the most memory one encode may be expected to take.
 static MAX_ENCODE_MEMORY: GucSetting<i32> = GucSetting::<i32>::new(2048);
 
+/// `circletree.encode_threads`: threads one encode may use (1 or 2).
+static ENCODE_THREADS: GucSetting<i32> = GucSetting::<i32>::new(2);
+
 pub fn init() {
     GucRegistry::define_int_guc(
         c"circletree.max_encode_memory",
@@ -18,6 +21,21 @@ pub fn init() {
         GucContext::Suset,
         GucFlags::UNIT_MB,
     );
+    GucRegistry::define_int_guc(
+        c"circletree.encode_threads",
+        c"Threads one ct_encode or ct_encode_within call may use on a large geometry (1 or 2).",
+        c"With 2, an encode of at least 5,000 vertices runs independent steps on a second thread, which never calls into PostgreSQL and stops when the statement is cancelled. Set 1 where the server's cores are better spent on other backends.",
+        &ENCODE_THREADS,
+        1,
+        2,
+        GucContext::Userset,
+        GucFlags::default(),
+    );
+}
+
+/// Tell the encoder how many threads this call may use (`circletree.encode_threads`).
+pub fn apply_encode_threads() {
+    circletree_core::parallel::set_threads(ENCODE_THREADS.get().clamp(1, 2) as usize);
 }
 
 /// Peak bytes a vertex of input costs, measured on a 1,000,000-vertex ring (VmHWM above a fresh
@@ -29,6 +47,7 @@ pub const ENCODE_WITHIN_BYTES_PER_VERTEX: f64 = 200.0;
 /// Refuse an encode whose estimated peak (from the WKB size: 16 bytes a vertex) exceeds
 /// `circletree.max_encode_memory`. Raises 54000 (program_limit_exceeded) with a hint.
 pub fn check_encode_memory(wkb: &[u8], bytes_per_vertex: f64, function: &str) {
+    apply_encode_threads();
     let vertices = wkb.len() as f64 / 16.0;
     let need_mb = (vertices * bytes_per_vertex / 1_048_576.0).ceil();
     let limit_mb = f64::from(MAX_ENCODE_MEMORY.get());
