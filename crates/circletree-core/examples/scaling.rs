@@ -1,12 +1,13 @@
 //! Encode time for one synthetic coastline of 1e3 .. 1e6 vertices:
 //! `cargo run --release -p circletree-core --example scaling [n ...]`. Peak memory: run under
-//! `/usr/bin/time -v`, one size per run.
+//! `/usr/bin/time -v`, one size per run. `CT_WITHIN=1`: `encode_within(geom, 10)` instead of
+//! `encode(geom, 5, 0.4, 10)`; `CT_THREADS=1`: never a second thread.
 //!
 //! The coastline keeps its resolution as it grows, as real data does (a bigger island has more
 //! vertices at the same spacing, not a denser outline): vertices 10 m apart along a disc of
 //! circumference 10·n m, with bays and headlands at wavelengths of 20 km, 2 km and 200 m
 //! (amplitudes 1 km, 100 m, 10 m) and 2 m of vertex noise.
-use circletree_core::encode::{encode, Options};
+use circletree_core::encode::{encode, encode_within, Options};
 use circletree_core::geometry::Kind;
 use std::time::Instant;
 
@@ -53,7 +54,12 @@ fn main() {
             max_error: None,
         };
         let t = Instant::now();
-        let (ct, rep) = encode(&wkb, 32760, &opts, &mut || {}).expect("encode");
+        let (ct, rep) = if std::env::var("CT_WITHIN").is_ok() {
+            encode_within(&wkb, 32760, 10.0, None, &mut || {})
+        } else {
+            encode(&wkb, 32760, &opts, &mut || {})
+        }
+        .expect("encode");
         println!(
             "n={n:8} time={:.3}s circles={} repaired={} rounds={} bytes={} wkb={}",
             t.elapsed().as_secs_f64(),
