@@ -278,8 +278,6 @@ pub(super) fn initial_rings(
     report: &mut Report,
 ) -> Vec<RingState> {
     let shape = ctx.shape;
-    report.filtered_circles = 0;
-    report.dp_points = 0;
     let all: Vec<(usize, usize, &Vec<Pt>)> = shape
         .parts
         .iter()
