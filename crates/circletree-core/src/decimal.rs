@@ -74,17 +74,21 @@ impl Decimal {
             return None;
         }
         let all = format!("{int}{frac}");
+        // trailing zeros go to the exponent, so that a mantissa of many zeros fits i64: the text
+        // form prints 51e20 as 5100000000000000000000, and that must read back
         let trimmed = all.trim_start_matches('0');
-        let mut m: i64 = if trimmed.is_empty() {
+        let digits = trimmed.trim_end_matches('0');
+        let zeros = i32::try_from(trimmed.len() - digits.len()).ok()?;
+        let mut m: i64 = if digits.is_empty() {
             0
         } else {
-            trimmed.parse().ok()?
+            digits.parse().ok()?
         };
         if neg {
             m = -m;
         }
         let frac_len = i32::try_from(frac.len()).ok()?;
-        Decimal::new(m, exp.checked_sub(frac_len)?)
+        Decimal::new(m, exp.checked_sub(frac_len)?.checked_add(zeros)?)
     }
 
     /// Exact `value / self` when that is an integer (`self` must be positive).
@@ -145,6 +149,22 @@ impl fmt::Display for Decimal {
 mod tests {
     use super::*;
     use proptest::prelude::*;
+
+    #[test]
+    fn many_trailing_zeros_read_back() {
+        // found by the text fuzz target: max_error=51e+020 printed as 22 digits that did not parse
+        let d = Decimal::parse("51e+020").unwrap();
+        assert_eq!(
+            d,
+            Decimal {
+                mantissa: 51,
+                exp: 20
+            }
+        );
+        assert_eq!(Decimal::parse(&d.to_string()), Some(d));
+        assert_eq!(Decimal::parse("5100000000000000000000.000"), Some(d));
+        assert_eq!(Decimal::parse("-0.000"), Decimal::new(0, 0));
+    }
 
     #[test]
     fn prints_and_parses() {
