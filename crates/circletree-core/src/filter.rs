@@ -19,6 +19,7 @@ use crate::geometry::{dist, Pt};
 use crate::medial::Candidate;
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{RTree, RTreeObject};
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// A kept circle and the run of ring edges it stands for: edges `start .. start + len` (modulo n).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -158,35 +159,99 @@ pub fn map_runs(
     interrupt: &mut dyn FnMut(),
 ) -> Vec<Mapped> {
     let n = ring.len();
-    let mut out: Vec<Mapped> = Vec::new();
     // Nearly identical circles (cocircular vertices give many) would map the same long runs again
     // and again: keep one per cell of a quarter of the tolerance in centre and radius.
     let cell = (tol / 4.0).max(f64::MIN_POSITIVE);
     let mut seen_circles = rustc_hash::FxHashSet::default();
+    let cands: Vec<&Candidate> = cands
+        .iter()
+        .filter(|cand| {
+            cand.r.abs() >= min_radius
+                && seen_circles.insert((
+                    (cand.c[0] / cell).round() as i64,
+                    (cand.c[1] / cell).round() as i64,
+                    (cand.r / cell).round() as i64,
+                ))
+        })
+        .collect();
     // Where the vertices of a finely stroked arc are all on one circle, their circumcentres scatter
     // by more than that cell (a circumcircle of three close points is ill-conditioned) and each maps
     // a run of most of the ring: quadratic (hours for ST_Buffer(point, 1e6, 250000) at a tolerance
     // of a millimetre). So the edges walked are counted, and past a budget far above what real
     // boundaries need (at most 146 edges per vertex on both data sets, from 1 m to 500 m; 70 on the
     // synthetic million-vertex coastline), a seed that lies on a run of at least LONG_RUN edges
-    // already mapped to a circle of the same side is not walked again. long_owner[v] is the last
-    // such run through vertex v.
+    // already mapped to a circle of the same side is not walked again.
     let budget = WORK_PER_VERTEX.saturating_mul(n).saturating_add(WORK_FLOOR);
+    // On a large ring the candidates' two halves are mapped side by side, the work of both
+    // counted together: while it stays within the budget no seed is skipped, as in one pass, so
+    // the runs are the same; past it both halves stop and the one pass below decides.
+    if n as u64 >= crate::encode::PARALLEL_VERTICES && crate::parallel::threads() > 1 {
+        let shared = AtomicUsize::new(0);
+        let (first, second) = cands.split_at(cands.len() / 2);
+        let (a, b) = crate::parallel::join(
+            true,
+            interrupt,
+            |i| {
+                map_list(
+                    ring,
+                    first,
+                    min_radius,
+                    tol,
+                    Budget::Shared(&shared, budget),
+                    i,
+                )
+            },
+            |i| {
+                map_list(
+                    ring,
+                    second,
+                    min_radius,
+                    tol,
+                    Budget::Shared(&shared, budget),
+                    i,
+                )
+            },
+        );
+        if let (Some(mut a), Some(b)) = (a, b) {
+            a.extend(b);
+            return a;
+        }
+    }
+    map_list(
+        ring,
+        &cands,
+        min_radius,
+        tol,
+        Budget::Skip(budget),
+        interrupt,
+    )
+    .unwrap_or_default()
+}
+
+/// How [`map_list`] spends its budget of edges walked.
+#[derive(Clone, Copy)]
+enum Budget<'a> {
+    /// Past the budget, skip seeds lying on a long run of the same side (one pass).
+    Skip(usize),
+    /// The work of every pass is summed here; past the budget, give up (`None`).
+    Shared(&'a AtomicUsize, usize),
+}
+
+fn map_list(
+    ring: &[Pt],
+    cands: &[&Candidate],
+    min_radius: f64,
+    tol: f64,
+    budget: Budget,
+    interrupt: &mut dyn FnMut(),
+) -> Option<Vec<Mapped>> {
+    let n = ring.len();
+    let mut out: Vec<Mapped> = Vec::new();
+    // long_owner[v] is the last run of at least LONG_RUN edges through vertex v.
     let mut long_owner: Vec<u32> = Vec::new();
     let mut work = 0usize;
     let mut total = 0usize;
     for cand in cands {
-        if cand.r.abs() < min_radius {
-            continue;
-        }
-        let key = (
-            (cand.c[0] / cell).round() as i64,
-            (cand.c[1] / cell).round() as i64,
-            (cand.r / cell).round() as i64,
-        );
-        if !seen_circles.insert(key) {
-            continue;
-        }
         // runs already mapped from this candidate's other vertices (three at most)
         let mut seen = [(0usize, 0usize); 3];
         let mut nseen = 0;
@@ -194,15 +259,22 @@ pub fn map_runs(
             if work >= INTERRUPT_WORK {
                 interrupt();
                 total += work;
+                if let Budget::Shared(sum, limit) = budget {
+                    if sum.fetch_add(work, Ordering::Relaxed) + work > limit {
+                        return None;
+                    }
+                }
                 work = 0;
             }
             if seen[..nseen].iter().any(|&(s, l)| (seed + n - s) % n <= l) {
                 continue;
             }
-            if total + work > budget {
-                if let Some(o) = long_owner.get(seed).and_then(|&o| out.get(o as usize)) {
-                    if o.r.signum() == cand.r.signum() {
-                        continue;
+            if let Budget::Skip(limit) = budget {
+                if total + work > limit {
+                    if let Some(o) = long_owner.get(seed).and_then(|&o| out.get(o as usize)) {
+                        if o.r.signum() == cand.r.signum() {
+                            continue;
+                        }
                     }
                 }
             }
@@ -230,12 +302,14 @@ pub fn map_runs(
             seen[nseen] = (s, l);
             nseen += 1;
             if l >= LONG_RUN {
-                if long_owner.is_empty() {
-                    long_owner = vec![u32::MAX; n];
-                }
-                let id = u32::try_from(out.len()).unwrap_or(u32::MAX);
-                for k in 0..=l {
-                    long_owner[(s + k) % n] = id;
+                if let Budget::Skip(_) = budget {
+                    if long_owner.is_empty() {
+                        long_owner = vec![u32::MAX; n];
+                    }
+                    let id = u32::try_from(out.len()).unwrap_or(u32::MAX);
+                    for k in 0..=l {
+                        long_owner[(s + k) % n] = id;
+                    }
                 }
                 work += l;
             }
@@ -247,7 +321,12 @@ pub fn map_runs(
             });
         }
     }
-    out
+    if let Budget::Shared(sum, limit) = budget {
+        if sum.fetch_add(work, Ordering::Relaxed) + work > limit {
+            return None;
+        }
+    }
+    Some(out)
 }
 
 /// Runs at least this long mark their vertices (see [`map_runs`]).
@@ -346,6 +425,76 @@ mod tests {
         assert!(kept
             .iter()
             .all(|m| (m.r - 100.0).abs() < 1.0 && dist(m.c, [1000.0, 2000.0]) < 1.0));
+    }
+
+    #[test]
+    fn halves_mapped_apart_are_the_one_pass_within_the_budget() {
+        // a wavy ring: many candidates of both sides, runs of all lengths
+        let ring: Vec<Pt> = (0..6000)
+            .map(|i| {
+                let t = i as f64 / 6000.0 * std::f64::consts::TAU;
+                let r = 10_000.0 + 300.0 * (17.0 * t).sin() + 40.0 * (131.0 * t).sin();
+                [r * t.cos(), r * t.sin()]
+            })
+            .collect();
+        let c = candidates(&ring, &mut || {});
+        let cands: Vec<&Candidate> = c.iter().collect();
+        let one = map_list(
+            &ring,
+            &cands,
+            5.0,
+            1.0,
+            Budget::Skip(usize::MAX),
+            &mut || {},
+        )
+        .unwrap_or_default();
+        assert!(one.len() > 100, "{}", one.len());
+        let (a, b) = cands.split_at(cands.len() / 3);
+        let sum = AtomicUsize::new(0);
+        let mut both = map_list(
+            &ring,
+            a,
+            5.0,
+            1.0,
+            Budget::Shared(&sum, usize::MAX),
+            &mut || {},
+        )
+        .unwrap_or_default();
+        both.extend(
+            map_list(
+                &ring,
+                b,
+                5.0,
+                1.0,
+                Budget::Shared(&sum, usize::MAX),
+                &mut || {},
+            )
+            .unwrap_or_default(),
+        );
+        let key = |m: &Mapped| {
+            (
+                m.c[0].to_bits(),
+                m.c[1].to_bits(),
+                m.r.to_bits(),
+                m.start,
+                m.len,
+            )
+        };
+        assert_eq!(
+            one.iter().map(key).collect::<Vec<_>>(),
+            both.iter().map(key).collect::<Vec<_>>()
+        );
+        // past the budget a half gives up, and map_runs falls back to the one pass
+        let small = AtomicUsize::new(0);
+        assert!(map_list(
+            &ring,
+            &cands,
+            5.0,
+            1.0,
+            Budget::Shared(&small, 10),
+            &mut || {}
+        )
+        .is_none());
     }
 
     #[test]
