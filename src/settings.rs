@@ -39,7 +39,8 @@ pub fn apply_encode_threads() {
 }
 
 /// Peak bytes a vertex of input costs, measured on a 1,000,000-vertex ring (VmHWM above a fresh
-/// backend's: about 460 for `ct_encode`, 110 for `ct_encode_within`) and rounded up for rings
+/// backend's: about 460 for `ct_encode`, 110 for `ct_encode_within`; the core's `scaling` example
+/// peaks about 40 bytes a vertex higher since `map_runs` runs on two threads) and rounded up for rings
 /// whose circles are denser.
 pub const ENCODE_BYTES_PER_VERTEX: f64 = 600.0;
 pub const ENCODE_WITHIN_BYTES_PER_VERTEX: f64 = 200.0;
