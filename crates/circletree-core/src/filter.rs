@@ -185,7 +185,7 @@ pub fn map_runs(
     // On a large ring the candidates' two halves are mapped side by side, the work of both
     // counted together: while it stays within the budget no seed is skipped, as in one pass, so
     // the runs are the same; past it both halves stop and the one pass below decides.
-    if n as u64 >= crate::encode::PARALLEL_VERTICES && crate::parallel::threads() > 1 {
+    if n as u64 >= crate::parallel::MIN_VERTICES && crate::parallel::threads() > 1 {
         let shared = AtomicUsize::new(0);
         let (first, second) = cands.split_at(cands.len() / 2);
         let (a, b) = crate::parallel::join(

@@ -1,5 +1,6 @@
 //! Two jobs at once, for large inputs only: the caller's thread runs one, a second thread the
-//! other. At most one extra thread per call ([`set_threads`] can forbid it), and it never calls
+//! other. One extra thread per join ([`set_threads`] can forbid it; a join inside the caller's job
+//! can start one more for a moment), and it never calls
 //! the caller's `interrupt` (in the extension that enters PostgreSQL, which only its own thread
 //! may): the second job gets an interrupt of its own that stops it, by unwinding, once the
 //! caller's side has unwound (a cancel or an error there). The caller's thread waits for the
@@ -20,6 +21,10 @@ static THREADS: AtomicUsize = AtomicUsize::new(2);
 pub fn set_threads(n: usize) {
     THREADS.store(n.clamp(1, 2), Ordering::Relaxed);
 }
+
+/// Inputs of at least this many vertices are worth a second thread: starting one costs tens of
+/// microseconds, and an input this large takes milliseconds per step.
+pub const MIN_VERTICES: u64 = 5_000;
 
 /// Threads one call may use now.
 pub fn threads() -> usize {

@@ -247,7 +247,8 @@ pub fn encode_within_stored(
     // which most often wins) is priced and its loop run here while a second thread prices the
     // others; the choice below is then made as if one thing were done after the other, so the
     // value is the same (a run the order would not have needed is dropped).
-    let worth_it = prep.vertices >= PARALLEL_VERTICES && specs.len() > 1 && parallel::threads() > 1;
+    let worth_it =
+        prep.vertices >= parallel::MIN_VERTICES && specs.len() > 1 && parallel::threads() > 1;
     let price = |plan: &Plan, interrupt: &mut dyn FnMut()| {
         let (result, plan) = (unchecked(&prep, srid, plan, max_error, interrupt), *plan);
         (
@@ -332,10 +333,6 @@ enum Start {
 /// use the bound. Measured on the corpus (bytes summed; 1.4 alone / these three / adding 1 and 0.4):
 /// 10 m 341,205 / 339,824 / 339,625; 25 m 235,173 / 234,417 / 234,293; 100 m 92,465 / 70,944 / 73,362.
 const WITHIN_GRIDS: [f64; 3] = [1.4, 0.8, 0.5];
-
-/// Inputs of at least this many vertices are worth a second thread ([`parallel`]): starting one
-/// costs tens of microseconds, and an input this large takes milliseconds per step.
-pub(crate) const PARALLEL_VERTICES: u64 = 5_000;
 
 /// Refuse lengths of a degree or more on a longitude/latitude SRID: no one means an error of 111 km,
 /// so they are metres given by mistake (`ct_encode(geom, 5, 0.4, 10)` on EPSG:4326 would otherwise

@@ -332,7 +332,7 @@ pub(super) fn initial_rings(
         (states, report)
     };
     let ((mut rings, a), (rest, b)) = parallel::join(
-        total as u64 >= crate::encode::PARALLEL_VERTICES && !there.is_empty(),
+        total as u64 >= crate::parallel::MIN_VERTICES && !there.is_empty(),
         interrupt,
         |i| start(here, i),
         |i| start(there, i),
@@ -411,7 +411,7 @@ pub(super) fn verify_and_repair(
         let segments: usize = rings.iter().map(|r| r.recon.len()).sum();
         let rings_ref = &rings;
         let (mut failing, (problems, problem_at)) = parallel::join(
-            segments as u64 >= crate::encode::PARALLEL_VERTICES,
+            segments as u64 >= crate::parallel::MIN_VERTICES,
             interrupt,
             |i| distance_failures(ctx, rings_ref, max_error, g, target, i),
             |i| validity_failures(ctx, rings_ref, g, i),
