@@ -1,6 +1,6 @@
 -- Catalog documentation: what \dT+ circletree and \df+ ct_* show. Loaded last by src/lib.rs
 -- (extension_sql_file!), and repeated in the upgrade script of each release that changed it
--- (sql/circletree--0.3.0--0.4.0.sql introduced it; sql/circletree--0.4.0--0.5.0.sql holds this text).
+-- (sql/circletree--0.3.0--0.4.0.sql introduced it; sql/circletree--0.5.0--0.6.0.sql holds this text).
 COMMENT ON TYPE @extschema@.circletree IS
   'A polygon stored as ordered circles (x, y, ±r), rebuilt from tangents and arcs; valid and within its recorded max_error (Hausdorff) of the original. See docs/FORMAT.md.';
 COMMENT ON FUNCTION @extschema@.ct_encode(geometry, float8, float8, float8, float8) IS
@@ -64,9 +64,13 @@ COMMENT ON FUNCTION @extschema@.ct_hausdorff(geometry, geometry) IS
 COMMENT ON FUNCTION @extschema@.ct_sweep(geometry, float8[], float8[], float8[]) IS
   'ct_sweep(geom, min_radius[], overlap[], dp_tolerance[]): the paper''s experiment: one ct_encode per combination, with circles by kind, bytes, storage ratio, sliver ratio, Hausdorff distance and validity.';
 COMMENT ON FUNCTION @extschema@._ct_encode_wkb(bytea, int, text, float8, float8, float8, float8) IS
-  'Internal: ct_encode on WKB (called by ct_encode).';
+  'Internal: ct_encode on WKB with PostGIS''s verdict passed in (called by ct_encode up to release 0.5.0).';
 COMMENT ON FUNCTION @extschema@._ct_encode_within_wkb(bytea, int, text, float8) IS
-  'Internal: ct_encode_within on WKB (called by ct_encode_within).';
+  'Internal: ct_encode_within on WKB with PostGIS''s verdict passed in (called by ct_encode_within up to release 0.5.0).';
+COMMENT ON FUNCTION @extschema@._ct_encode_geom(geometry, bytea, int, regprocedure, regprocedure, float8, float8, float8, float8) IS
+  'Internal: ct_encode of the geometry (its WKB and SRID), asking PostGIS''s ST_IsValid and ST_IsValidReason (the two functions given) beside the encoder (called by ct_encode).';
+COMMENT ON FUNCTION @extschema@._ct_encode_within_geom(geometry, bytea, int, regprocedure, regprocedure, float8) IS
+  'Internal: ct_encode_within of the geometry (its WKB and SRID), asking PostGIS''s ST_IsValid and ST_IsValidReason (the two functions given) beside the encoder (called by ct_encode_within).';
 COMMENT ON FUNCTION @extschema@._ct_decode_ewkb(@extschema@.circletree, float8) IS
   'Internal: the rebuilt polygon as EWKB (called by ct_decode).';
 COMMENT ON FUNCTION @extschema@._ct_decode_curved_ewkt(@extschema@.circletree) IS

@@ -1,6 +1,6 @@
 -- PostGIS-facing wrappers (loaded by src/lib.rs with extension_sql_file!, and repeated as they are in
--- the upgrade script of each release that changed them: sql/circletree--0.3.0--0.4.0.sql holds
--- 0.4.0's, sql/circletree--0.4.0--0.5.0.sql this text).
+-- the upgrade script of each release that changed them: sql/circletree--0.4.0--0.5.0.sql holds
+-- 0.5.0's, sql/circletree--0.5.0--0.6.0.sql this text).
 --
 -- They are SQL functions so the planner can inline them. Every function they call is schema-qualified,
 -- so a schema ahead of PostGIS's in a caller's search_path cannot change what they compute (the
@@ -45,11 +45,25 @@ CREATE OR REPLACE FUNCTION @extschema@._ct_srid_is_lonlat(srid int) RETURNS bool
                                        FROM %1$I.spatial_ref_sys s WHERE s.srid = $1), false) $$;
 
 -- PostGIS's reason when a (Multi)Polygon is not valid, else NULL (other types are refused later,
--- by their type).
+-- by their type; with M values GeometryType says POLYGONM).
 CREATE OR REPLACE FUNCTION @extschema@._ct_invalid_reason(geom %1$I.geometry) RETURNS text
     LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
-    AS $$ SELECT CASE WHEN %1$I.GeometryType($1) IN ('POLYGON', 'MULTIPOLYGON') AND NOT %1$I.ST_IsValid($1)
+    AS $$ SELECT CASE WHEN %1$I.GeometryType($1) IN ('POLYGON', 'MULTIPOLYGON', 'POLYGONM', 'MULTIPOLYGONM')
+                       AND NOT %1$I.ST_IsValid($1)
                       THEN %1$I.ST_IsValidReason($1) END $$;
+
+-- The encoders (0.6.0 on): the geometry, its WKB and PostGIS's ST_IsValid and ST_IsValidReason
+-- (resolved, schema-qualified, when the calling query is planned), which the encoder calls itself,
+-- beside its own work on a large input (src/postgis.rs).
+CREATE OR REPLACE FUNCTION @extschema@._ct_encode_geom(geom %1$I.geometry, wkb bytea, srid int,
+        is_valid pg_catalog.regprocedure, reason pg_catalog.regprocedure, min_radius float8,
+        overlap float8, dp_tolerance float8, max_error float8)
+    RETURNS @extschema@.circletree IMMUTABLE PARALLEL SAFE
+    LANGUAGE c AS 'MODULE_PATHNAME', '_ct_encode_geom_wrapper';
+CREATE OR REPLACE FUNCTION @extschema@._ct_encode_within_geom(geom %1$I.geometry, wkb bytea, srid int,
+        is_valid pg_catalog.regprocedure, reason pg_catalog.regprocedure, max_error float8)
+    RETURNS @extschema@.circletree IMMUTABLE PARALLEL SAFE
+    LANGUAGE c AS 'MODULE_PATHNAME', '_ct_encode_within_geom_wrapper';
 
 -- Validity is PostGIS's own (ST_IsValid), so what PostGIS accepts, circletree accepts. On a
 -- longitude/latitude SRID a length of a degree or more is refused (metres given by mistake).
@@ -58,8 +72,8 @@ CREATE OR REPLACE FUNCTION @extschema@.ct_encode(geom %1$I.geometry, min_radius 
     RETURNS @extschema@.circletree LANGUAGE sql IMMUTABLE PARALLEL SAFE
     AS $$ SELECT CASE WHEN @extschema@._ct_check_degrees(@extschema@._ct_srid_is_lonlat(%1$I.ST_SRID($1)),
                                                        %1$I.ST_SRID($1), $2, $4, $5)
-            THEN @extschema@._ct_encode_wkb(%1$I.ST_AsBinary($1), %1$I.ST_SRID($1),
-            @extschema@._ct_invalid_reason($1),
+            THEN @extschema@._ct_encode_geom($1, %1$I.ST_AsBinary($1), %1$I.ST_SRID($1),
+            %2$L::pg_catalog.regprocedure, %3$L::pg_catalog.regprocedure,
             $2, $3, $4, $5) END $$;
 -- The fewest bytes whose ct_decode is valid and within max_error (points only, on the grid that
 -- gives the fewest bytes; see docs/ALGORITHM.md).
@@ -67,8 +81,8 @@ CREATE OR REPLACE FUNCTION @extschema@.ct_encode_within(geom %1$I.geometry, max_
     RETURNS @extschema@.circletree LANGUAGE sql IMMUTABLE PARALLEL SAFE
     AS $$ SELECT CASE WHEN @extschema@._ct_check_degrees(@extschema@._ct_srid_is_lonlat(%1$I.ST_SRID($1)),
                                                        %1$I.ST_SRID($1), NULL, NULL, $2)
-            THEN @extschema@._ct_encode_within_wkb(%1$I.ST_AsBinary($1), %1$I.ST_SRID($1),
-            @extschema@._ct_invalid_reason($1),
+            THEN @extschema@._ct_encode_within_geom($1, %1$I.ST_AsBinary($1), %1$I.ST_SRID($1),
+            %2$L::pg_catalog.regprocedure, %3$L::pg_catalog.regprocedure,
             $2) END $$;
 
 -- Longitude/latitude data in metres: a geography is encoded in the WGS 84 UTM zone of its bounding
@@ -146,6 +160,7 @@ CREATE OR REPLACE FUNCTION @extschema@.ct_sweep(geom %1$I.geometry,
            LATERAL (SELECT @extschema@.ct_summary(e.ct) AS s) x
      ORDER BY d NULLS FIRST, o, m
     $$;
-$sql$, pg);
+$sql$, pg, pg_catalog.format('%I.st_isvalid(%I.geometry)', pg, pg),
+        pg_catalog.format('%I.st_isvalidreason(%I.geometry)', pg, pg));
 END
 $install$;

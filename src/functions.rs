@@ -141,7 +141,7 @@ fn _ct_decode_curved_wkt(ct: CircleTree) -> String {
     decode::to_curved_wkt(&ct.value)
 }
 
-fn interrupt() {
+pub(crate) fn interrupt() {
     pgrx::check_for_interrupts!();
 }
 

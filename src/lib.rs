@@ -9,6 +9,7 @@ use pgrx::prelude::*;
 pub mod datatype;
 pub mod error;
 pub mod functions;
+pub mod postgis;
 pub mod settings;
 
 /// Registers the settings (`circletree.max_encode_memory`).

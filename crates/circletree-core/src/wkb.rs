@@ -63,6 +63,12 @@ fn header_type(buf: &[u8]) -> Result<(u32, bool)> {
     Ok((iso % 1000, ewkb_zm || iso >= 1000))
 }
 
+/// Whether WKB or EWKB is a Polygon or MultiPolygon (with or without Z and M) by its header:
+/// what the encoders ask PostGIS's validity of (other types are refused by their type).
+pub fn is_polygonal(buf: &[u8]) -> bool {
+    matches!(header_type(buf), Ok((3 | 6, _)))
+}
+
 /// Read a Polygon or MultiPolygon from WKB or EWKB.
 ///
 /// ```
@@ -307,6 +313,38 @@ mod tests {
         let back = read(&bytes).unwrap();
         assert_eq!(back.shape.parts, parts);
         assert!(!back.dropped_zm);
+    }
+
+    #[test]
+    fn polygonal_headers() {
+        let wkb = |le: bool, code: u32| {
+            let mut w = vec![u8::from(le)];
+            w.extend(if le {
+                code.to_le_bytes()
+            } else {
+                code.to_be_bytes()
+            });
+            w
+        };
+        for code in [
+            3,
+            6,
+            1003,
+            2006,
+            3003,
+            0x2000_0003,
+            0x8000_0006,
+            0xC000_0003,
+        ] {
+            assert!(is_polygonal(&wkb(true, code)), "{code:#x}");
+            assert!(is_polygonal(&wkb(false, code)), "{code:#x}");
+        }
+        for code in [1, 2, 4, 5, 7, 1001, 3002, 0x2000_0007, 10, 15, 17] {
+            assert!(!is_polygonal(&wkb(true, code)), "{code:#x}");
+        }
+        assert!(!is_polygonal(&[1, 3, 0]));
+        assert!(!is_polygonal(&[2, 3, 0, 0, 0]));
+        assert!(!is_polygonal(&[]));
     }
 
     #[test]

@@ -30,6 +30,7 @@
 //! encoder's result must pass: quantize, rebuild, measure, check validity, repair); this module
 //! holds the parameters, the plans and the grid refinement around them.
 
+mod host_check;
 mod initial;
 mod repair;
 
@@ -41,7 +42,10 @@ use crate::grid::Grid;
 use crate::parallel;
 use crate::touch;
 use crate::validity::{touch_key, Touches};
+pub use host_check::HostCheck;
+use host_check::{beside, Verdict};
 use repair::{initial_rings, unchecked_parts, verify_and_repair, Context, Outcome, RingState};
+use std::sync::atomic::Ordering;
 
 /// Encoding parameters, in the units of the geometry's SRID.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -157,8 +161,32 @@ pub fn encode_checked(
     invalid_reason: Option<&str>,
     interrupt: &mut dyn FnMut(),
 ) -> Result<(CircleTree, Report)> {
+    encode_verdict(wkb, srid, opts, Verdict::Known(invalid_reason), interrupt)
+}
+
+/// [`encode_checked`] with the input's validity asked of the host while the encoder runs
+/// (see [`HostCheck`]).
+pub fn encode_host_checked(
+    wkb: &[u8],
+    srid: i32,
+    opts: &Options,
+    check: HostCheck<impl FnOnce() -> bool, impl FnOnce() -> String>,
+    interrupt: &mut dyn FnMut(),
+) -> Result<(CircleTree, Report)> {
+    beside(wkb, check, interrupt, |verdict, i| {
+        encode_verdict(wkb, srid, opts, verdict, i)
+    })
+}
+
+fn encode_verdict(
+    wkb: &[u8],
+    srid: i32,
+    opts: &Options,
+    verdict: Verdict<'_>,
+    interrupt: &mut dyn FnMut(),
+) -> Result<(CircleTree, Report)> {
     let max_error = opts.check()?;
-    let prep = prepare(wkb, invalid_reason)?;
+    let prep = prepare(wkb, verdict)?;
     let plan = Plan {
         opts: *opts,
         circles: true,
@@ -199,6 +227,36 @@ pub fn encode_within_stored(
     invalid_reason: Option<&str>,
     interrupt: &mut dyn FnMut(),
 ) -> Result<(CircleTree, Vec<u8>, Report)> {
+    within_verdict(
+        wkb,
+        srid,
+        max_error,
+        Verdict::Known(invalid_reason),
+        interrupt,
+    )
+}
+
+/// [`encode_within_stored`] with the input's validity asked of the host while the encoder runs
+/// (see [`HostCheck`]).
+pub fn encode_within_host_checked(
+    wkb: &[u8],
+    srid: i32,
+    max_error: f64,
+    check: HostCheck<impl FnOnce() -> bool, impl FnOnce() -> String>,
+    interrupt: &mut dyn FnMut(),
+) -> Result<(CircleTree, Vec<u8>, Report)> {
+    beside(wkb, check, interrupt, |verdict, i| {
+        within_verdict(wkb, srid, max_error, verdict, i)
+    })
+}
+
+fn within_verdict(
+    wkb: &[u8],
+    srid: i32,
+    max_error: f64,
+    verdict: Verdict<'_>,
+    interrupt: &mut dyn FnMut(),
+) -> Result<(CircleTree, Vec<u8>, Report)> {
     positive("max_error", max_error)?;
     if !(MAX_ERROR_RANGE.0..=MAX_ERROR_RANGE.1).contains(&max_error) {
         return Err(range_error(max_error));
@@ -210,7 +268,7 @@ pub fn encode_within_stored(
         max_error: Some(max_error),
     };
     let max_error = checked.check()?;
-    let prep = prepare(wkb, invalid_reason)?;
+    let prep = prepare(wkb, verdict)?;
     // the same parameter ranges as `encode` at this bound (its grid must hold the coordinates)
     first_grid(&prep, max_error, 2.0)?;
     // Every plan's start is priced on its grid, and the closed loop runs on the cheapest first.
@@ -387,10 +445,12 @@ struct Prepared {
     dropped_zm: bool,
 }
 
-fn prepare(wkb: &[u8], invalid_reason: Option<&str>) -> Result<Prepared> {
+fn prepare(wkb: &[u8], verdict: Verdict<'_>) -> Result<Prepared> {
     let input = crate::wkb::read(wkb)?;
-    if let Some(reason) = invalid_reason {
-        return Err(Error::InvalidPolygon(reason.to_string()));
+    match verdict {
+        Verdict::Known(Some(reason)) => return Err(Error::InvalidPolygon(reason.to_string())),
+        Verdict::Known(None) => {}
+        Verdict::Pending(read) => read.store(true, Ordering::Release),
     }
     let mut shape = input.shape;
     orient(&mut shape);
