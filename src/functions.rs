@@ -145,6 +145,13 @@ pub(crate) fn interrupt() {
     pgrx::check_for_interrupts!();
 }
 
+/// The encoders store 2D boundaries: say so when the input had Z or M values.
+pub(crate) fn notice_dropped_zm(report: &circletree_core::encode::Report) {
+    if report.dropped_zm {
+        pgrx::notice!("circletree: the geometry's Z and M values were dropped; circletree stores 2D boundaries");
+    }
+}
+
 /// Encode a WKB Polygon/MultiPolygon. `invalid_reason` comes from ST_IsValidReason when
 /// ST_IsValid is false. NULL geometry, min_radius or overlap give NULL.
 #[allow(clippy::too_many_arguments)]
@@ -178,9 +185,7 @@ fn _ct_encode_wkb(
         &mut interrupt,
     )
     .or_raise();
-    if report.dropped_zm {
-        pgrx::notice!("circletree: the geometry's Z and M values were dropped; circletree stores 2D boundaries");
-    }
+    notice_dropped_zm(&report);
     Some(CircleTree::new(value))
 }
 
@@ -207,9 +212,7 @@ fn _ct_encode_within_wkb(
         &mut interrupt,
     )
     .or_raise();
-    if report.dropped_zm {
-        pgrx::notice!("circletree: the geometry's Z and M values were dropped; circletree stores 2D boundaries");
-    }
+    notice_dropped_zm(&report);
     Some(CircleTree { value, bytes })
 }
 

@@ -63,9 +63,7 @@ fn _ct_encode_geom(
         &mut crate::functions::interrupt,
     )
     .or_raise();
-    if report.dropped_zm {
-        pgrx::notice!("circletree: the geometry's Z and M values were dropped; circletree stores 2D boundaries");
-    }
+    crate::functions::notice_dropped_zm(&report);
     Some(CircleTree::new(value))
 }
 
@@ -99,9 +97,7 @@ fn _ct_encode_within_geom(
         &mut crate::functions::interrupt,
     )
     .or_raise();
-    if report.dropped_zm {
-        pgrx::notice!("circletree: the geometry's Z and M values were dropped; circletree stores 2D boundaries");
-    }
+    crate::functions::notice_dropped_zm(&report);
     Some(CircleTree { value, bytes })
 }
 
