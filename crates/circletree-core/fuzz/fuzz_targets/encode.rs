@@ -4,7 +4,9 @@
 //! (always valid: most inputs exercise the encoder) or free points (mostly invalid: the encoder
 //! must not panic on what PostGIS would have refused first).
 #![no_main]
-use circletree_core::encode::{encode, encode_within, Options};
+use circletree_core::encode::{
+    encode, encode_host_checked, encode_within, encode_within_host_checked, HostCheck, Options,
+};
 use circletree_core::format::CircleTree;
 use circletree_core::geometry::{Kind, Pt};
 use circletree_core::{decode, metrics, wkb, Error};
@@ -84,6 +86,34 @@ fuzz_target!(|data: &[u8]| {
         };
         encode(&input, 0, &o, &mut || {})
     };
+    if head[0] & 16 != 0 {
+        // the host's verdict asked beside the encoder (ct_encode and ct_encode_within in SQL since
+        // 0.6.0; these inputs are below the size that starts a thread, so the order is the
+        // sequential one): a valid verdict gives what the verdict passed in gives, an invalid one
+        // the host's reason, or the error found while reading, as before
+        let check = HostCheck {
+            is_valid: || valid,
+            reason: || "host says no".to_string(),
+        };
+        let host = if within {
+            encode_within_host_checked(&input, 0, bound, check, &mut || {}).map(|(ct, _, _)| ct)
+        } else {
+            let o = Options {
+                min_radius: bound / 2.0,
+                overlap: 0.4,
+                dp_tolerance: Some(bound),
+                max_error: None,
+            };
+            encode_host_checked(&input, 0, &o, check, &mut || {}).map(|(ct, _)| ct)
+        };
+        match (&host, &res) {
+            (Ok(a), Ok((b, _))) if valid => assert_eq!(a.to_bytes(), b.to_bytes()),
+            (Err(a), Err(b)) if valid => assert_eq!(a.to_string(), b.to_string()),
+            (Err(Error::InvalidPolygon(r)), _) if !valid => assert_eq!(r, "host says no"),
+            (Err(a), Err(b)) if !valid => assert_eq!(a.to_string(), b.to_string()),
+            _ => panic!("host check {host:?} against the verdict passed in {res:?} (valid: {valid})"),
+        }
+    }
     let ct = match res {
         Ok((ct, _)) => ct,
         Err(Error::InvalidParameter { .. }) => return,
