@@ -153,21 +153,33 @@ impl Validity {
         if !self.polygonal {
             return true;
         }
-        // SAFETY: the function was checked to take the geometry's type and return bool; a
-        // PostgreSQL ERROR inside becomes a Rust panic at pgrx's guarded boundary
-        let d =
-            unsafe { pg_sys::OidFunctionCall1Coll(self.is_valid, pg_sys::InvalidOid, self.geom) };
+        let d = call(self.is_valid, self.geom);
         // SAFETY: a bool datum (OidFunctionCall1Coll raises an ERROR on a NULL result)
         unsafe { bool::from_datum(d, false) }.unwrap_or(false)
     }
 
     /// PostGIS's `ST_IsValidReason`.
     pub fn reason(&self) -> String {
-        // SAFETY: as in `is_valid`, a function returning text
-        let d = unsafe { pg_sys::OidFunctionCall1Coll(self.reason, pg_sys::InvalidOid, self.geom) };
+        let d = call(self.reason, self.geom);
         // SAFETY: a text datum, not NULL
         unsafe { String::from_datum(d, false) }.unwrap_or_default()
     }
+}
+
+/// Call a checked function of the geometry. A cancel (or statement_timeout) that reaches GEOS
+/// makes PostGIS raise its own ERROR ("GEOS isvalid() threw an error!", SQLSTATE XX000), the
+/// cancel still pending: it is raised instead, as PostgreSQL would have (57014).
+fn call(f: pg_sys::Oid, geom: pg_sys::Datum) -> pg_sys::Datum {
+    PgTryBuilder::new(|| {
+        // SAFETY: `f` was checked to take the geometry's type (`check_function`); a PostgreSQL
+        // ERROR inside becomes a Rust panic at pgrx's guarded boundary
+        unsafe { pg_sys::OidFunctionCall1Coll(f, pg_sys::InvalidOid, geom) }
+    })
+    .catch_others(|e| {
+        pgrx::check_for_interrupts!();
+        e.rethrow()
+    })
+    .execute()
 }
 
 /// Refuse a function that is not one of `arg` returning `returns`, or that the user may not run.
