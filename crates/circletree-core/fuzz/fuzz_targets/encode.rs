@@ -75,15 +75,15 @@ fuzz_target!(|data: &[u8]| {
     let valid = wkb::to_geo(&parts).is_valid()
         && parts.iter().flatten().all(|r| ring_area(r).abs() > 0.0);
     let input = wkb::write(Kind::Polygon, &parts);
+    let o = Options {
+        min_radius: bound / 2.0,
+        overlap: 0.4,
+        dp_tolerance: Some(bound),
+        max_error: None,
+    };
     let res = if within {
         encode_within(&input, 0, bound, None, &mut || {})
     } else {
-        let o = Options {
-            min_radius: bound / 2.0,
-            overlap: 0.4,
-            dp_tolerance: Some(bound),
-            max_error: None,
-        };
         encode(&input, 0, &o, &mut || {})
     };
     if head[0] & 16 != 0 {
@@ -98,12 +98,6 @@ fuzz_target!(|data: &[u8]| {
         let host = if within {
             encode_within_host_checked(&input, 0, bound, check, &mut || {}).map(|(ct, _, _)| ct)
         } else {
-            let o = Options {
-                min_radius: bound / 2.0,
-                overlap: 0.4,
-                dp_tolerance: Some(bound),
-                max_error: None,
-            };
             encode_host_checked(&input, 0, &o, check, &mut || {}).map(|(ct, _)| ct)
         };
         match (&host, &res) {
