@@ -23,8 +23,8 @@ use pgrx::FromDatum;
 
 /// Release 0.6.0's `ct_encode`: `_ct_encode_wkb` given the geometry itself and PostGIS's
 /// `ST_IsValid` and `ST_IsValidReason`, which it calls while the encoder runs (on a large input
-/// the encoder works on a second thread meanwhile). NULL geometry,
-/// min_radius or overlap give NULL.
+/// the encoder works on a second thread meanwhile). NULL geometry, min_radius or overlap give
+/// NULL.
 // Declared in sql/postgis_wrappers.sql (its first argument is PostGIS's geometry).
 #[allow(clippy::too_many_arguments)]
 #[pg_extern(sql = false)]
@@ -40,7 +40,7 @@ fn _ct_encode_geom(
     max_error: Option<f64>,
     fcinfo: pg_sys::FunctionCallInfo,
 ) -> Option<CircleTree> {
-    let (geom, wkb, min_radius, overlap) = (geom.unwrap()?, wkb?, min_radius?, overlap?);
+    let (geom, wkb, min_radius, overlap) = (geom.unwrap()?, wkb?, min_radius?, overlap?); // ok: Internal::unwrap is an Option
     let (is_valid, reason) = (is_valid?, reason?);
     crate::settings::check_encode_memory(
         wkb,
@@ -48,7 +48,7 @@ fn _ct_encode_geom(
         "ct_encode",
     );
     // SAFETY: this call's fcinfo, and its first argument (not NULL)
-    let validity = unsafe { crate::postgis::Validity::new(fcinfo, geom, wkb, is_valid, reason) };
+    let validity = unsafe { Validity::new(fcinfo, geom, wkb, is_valid, reason) };
     let opts = circletree_core::encode::Options {
         min_radius,
         overlap,
@@ -80,7 +80,7 @@ fn _ct_encode_within_geom(
     max_error: Option<f64>,
     fcinfo: pg_sys::FunctionCallInfo,
 ) -> Option<CircleTree> {
-    let (geom, wkb, max_error) = (geom.unwrap()?, wkb?, max_error?);
+    let (geom, wkb, max_error) = (geom.unwrap()?, wkb?, max_error?); // ok: Internal::unwrap is an Option
     let (is_valid, reason) = (is_valid?, reason?);
     crate::settings::check_encode_memory(
         wkb,
@@ -88,7 +88,7 @@ fn _ct_encode_within_geom(
         "ct_encode_within",
     );
     // SAFETY: this call's fcinfo, and its first argument (not NULL)
-    let validity = unsafe { crate::postgis::Validity::new(fcinfo, geom, wkb, is_valid, reason) };
+    let validity = unsafe { Validity::new(fcinfo, geom, wkb, is_valid, reason) };
     let (value, bytes, report) = circletree_core::encode::encode_within_host_checked(
         wkb,
         srid.unwrap_or(0),
@@ -102,7 +102,7 @@ fn _ct_encode_within_geom(
 }
 
 /// PostGIS's check of one input, ready to be called.
-pub struct Validity {
+struct Validity {
     geom: pg_sys::Datum,
     is_valid: pg_sys::Oid,
     reason: pg_sys::Oid,
@@ -116,7 +116,7 @@ impl Validity {
     ///
     /// # Safety
     /// `fcinfo` is the current call's, and `geom` its first argument, not NULL.
-    pub unsafe fn new(
+    unsafe fn new(
         fcinfo: pg_sys::FunctionCallInfo,
         geom: pg_sys::Datum,
         wkb: &[u8],
@@ -149,7 +149,7 @@ impl Validity {
     }
 
     /// PostGIS's `ST_IsValid` (true for other types than (Multi)Polygon, which are not asked).
-    pub fn is_valid(&self) -> bool {
+    fn is_valid(&self) -> bool {
         if !self.polygonal {
             return true;
         }
@@ -159,7 +159,7 @@ impl Validity {
     }
 
     /// PostGIS's `ST_IsValidReason`.
-    pub fn reason(&self) -> String {
+    fn reason(&self) -> String {
         let d = call(self.reason, self.geom);
         // SAFETY: a text datum, not NULL
         unsafe { String::from_datum(d, false) }.unwrap_or_default()
