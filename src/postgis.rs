@@ -13,6 +13,7 @@
 
 use crate::datatype::CircleTree;
 use crate::error::OrRaise;
+use crate::settings::{ENCODE_BYTES_PER_VERTEX, ENCODE_WITHIN_BYTES_PER_VERTEX};
 use circletree_core::encode::HostCheck;
 use pgrx::datum::Internal;
 use pgrx::pg_catalog::pg_proc::{PgProc, ProKind};
@@ -42,13 +43,17 @@ fn _ct_encode_geom(
 ) -> Option<CircleTree> {
     let (geom, wkb, min_radius, overlap) = (geom.unwrap()?, wkb?, min_radius?, overlap?); // ok: Internal::unwrap is an Option
     let (is_valid, reason) = (is_valid?, reason?);
-    crate::settings::check_encode_memory(
-        wkb,
-        crate::settings::ENCODE_BYTES_PER_VERTEX,
-        "ct_encode",
-    );
     // SAFETY: this call's fcinfo, and its first argument (not NULL)
-    let validity = unsafe { Validity::new(fcinfo, geom, wkb, is_valid, reason) };
+    let validity = unsafe {
+        Validity::for_encoder(
+            fcinfo,
+            geom,
+            wkb,
+            (is_valid, reason),
+            ENCODE_BYTES_PER_VERTEX,
+            "ct_encode",
+        )
+    };
     let opts = circletree_core::encode::Options {
         min_radius,
         overlap,
@@ -82,13 +87,17 @@ fn _ct_encode_within_geom(
 ) -> Option<CircleTree> {
     let (geom, wkb, max_error) = (geom.unwrap()?, wkb?, max_error?); // ok: Internal::unwrap is an Option
     let (is_valid, reason) = (is_valid?, reason?);
-    crate::settings::check_encode_memory(
-        wkb,
-        crate::settings::ENCODE_WITHIN_BYTES_PER_VERTEX,
-        "ct_encode_within",
-    );
     // SAFETY: this call's fcinfo, and its first argument (not NULL)
-    let validity = unsafe { Validity::new(fcinfo, geom, wkb, is_valid, reason) };
+    let validity = unsafe {
+        Validity::for_encoder(
+            fcinfo,
+            geom,
+            wkb,
+            (is_valid, reason),
+            ENCODE_WITHIN_BYTES_PER_VERTEX,
+            "ct_encode_within",
+        )
+    };
     let (value, bytes, report) = circletree_core::encode::encode_within_host_checked(
         wkb,
         srid.unwrap_or(0),
@@ -112,17 +121,21 @@ struct Validity {
 }
 
 impl Validity {
-    /// Check the two functions against the type of this call's first argument (the geometry).
+    /// What both encoders check before they start: the memory the input would need
+    /// (`circletree.max_encode_memory`, at `bytes_per_vertex`), then the two functions against
+    /// the type of this call's first argument (the geometry).
     ///
     /// # Safety
     /// `fcinfo` is the current call's, and `geom` its first argument, not NULL.
-    unsafe fn new(
+    unsafe fn for_encoder(
         fcinfo: pg_sys::FunctionCallInfo,
         geom: pg_sys::Datum,
         wkb: &[u8],
-        is_valid: pg_sys::Oid,
-        reason: pg_sys::Oid,
+        (is_valid, reason): (pg_sys::Oid, pg_sys::Oid),
+        bytes_per_vertex: f64,
+        function: &str,
     ) -> Self {
+        crate::settings::check_encode_memory(wkb, bytes_per_vertex, function);
         // SAFETY: the caller passes this call's fcinfo, whose flinfo PostgreSQL set up
         let own = unsafe { (*(*fcinfo).flinfo).fn_oid };
         let geometry = PgProc::new(own)
