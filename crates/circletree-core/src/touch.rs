@@ -4,12 +4,12 @@
 //! one, which does not change the geometry), and a zero-radius circle of each of those rings, so
 //! that every ring rebuilds through the same grid point and none is moved into another.
 //!
-//! Exact predicates decide "lies on an edge", as GEOS does for `ST_IsValid`. O(n log n).
+//! Exact predicates decide "lies on an edge", as GEOS does for `ST_IsValid`. Segments are found
+//! with [`crate::box_grid`]: two linear passes to build, a cell or a few per vertex looked up.
 
 use crate::geometry::{Pt, Shape};
 use robust::{orient2d, Coord};
-use rstar::primitives::{GeomWithData, Line};
-use rstar::{RTree, AABB};
+use crate::box_grid::BoxIndex;
 use rustc_hash::FxHashMap;
 
 fn on_segment(a: Pt, b: Pt, p: Pt) -> bool {
@@ -44,26 +44,32 @@ pub fn pin(shape: &mut Shape) -> (Vec<Vec<Vec<usize>>>, Vec<Pt>) {
     // Vertices of one ring lying inside an edge of another: insert them there.
     let mut inserts: FxHashMap<(usize, usize), Vec<Pt>> = FxHashMap::default();
     {
+        // a uniform grid of the segments' boxes (an R-tree when they suit no grid): a lookup per
+        // vertex, and no recursive sort to build (rstar's bulk load was most of `pin`)
         let mut segs = Vec::new();
         for (k, &(pi, ri)) in ids.iter().enumerate() {
             let r = &shape.parts[pi][ri];
             for i in 0..r.len() {
-                segs.push(GeomWithData::new(
-                    Line::new(r[i], r[(i + 1) % r.len()]),
+                let (a, b) = (r[i], r[(i + 1) % r.len()]);
+                segs.push((
+                    [a[0].min(b[0]), a[1].min(b[1]), a[0].max(b[0]), a[1].max(b[1])],
                     (k, i),
                 ));
             }
         }
-        let tree = RTree::bulk_load(segs);
+        let index = BoxIndex::new(segs);
         for (k, &(pi, ri)) in ids.iter().enumerate() {
             for &p in &shape.parts[pi][ri] {
-                for s in tree.locate_in_envelope_intersecting(&AABB::from_point(p)) {
-                    let (k2, i) = s.data;
-                    let (a, b) = (s.geom().from, s.geom().to);
-                    if k2 != k && p != a && p != b && on_segment(a, b, p) {
+                index.for_each_meeting(&[p[0], p[1], p[0], p[1]], |(k2, i)| {
+                    if k2 == k {
+                        return;
+                    }
+                    let r = &shape.parts[ids[k2].0][ids[k2].1];
+                    let (a, b) = (r[i], r[(i + 1) % r.len()]);
+                    if p != a && p != b && on_segment(a, b, p) {
                         inserts.entry((k2, i)).or_default().push(p);
                     }
-                }
+                });
             }
         }
     }
