@@ -75,8 +75,9 @@ fn chain(
     if len <= 1 {
         return Vec::new();
     }
-    let p = |k: usize| ring[(a + k) % n];
-    let stored: Vec<Pt> = (0..=len).map(|k| snap(p(k))).collect();
+    // the chain's vertices in order (no index wraps around the ring below), and as stored
+    let pts: Vec<Pt> = (0..=len).map(|k| ring[(a + k) % n]).collect();
+    let stored: Vec<Pt> = pts.iter().map(|&q| snap(q)).collect();
     // hops[k]: fewest shortcuts from 0 to k; from[k]: the vertex before k on that path
     let mut hops = vec![usize::MAX; len + 1];
     let mut from = vec![0usize; len + 1];
@@ -96,12 +97,12 @@ fn chain(
         }
         let mut wedge = Wedge::new(stored[i], tol);
         for j in i + 2..=len.min(i + WINDOW) {
-            if !wedge.add(p(j - 1)) {
+            if !wedge.add(pts[j - 1]) {
                 break;
             }
             if next < hops[j] {
-                let (allowed, len) = wedge.allows(stored[j]);
-                if allowed && wedge.fits(ring, a, i, j, stored[j], len) {
+                let (allowed, len2) = wedge.allows(stored[j]);
+                if allowed && wedge.fits(&pts[i + 1..j], stored[j], len2) {
                     hops[j] = next;
                     from[j] = i;
                 }
@@ -116,7 +117,7 @@ fn chain(
     }
     path.push(0);
     path.reverse();
-    merge_long(ring, a, &stored, &path, tol, interrupt)
+    merge_long(&pts, &stored, &path, tol, interrupt)
         .into_iter()
         .map(|k| a + k)
         .collect()
@@ -128,15 +129,12 @@ fn chain(
 /// it), the shared vertex is dropped while one shortcut from the last vertex kept allows it, its
 /// wedge carried on past the window. The interior vertices kept, as offsets into the chain.
 fn merge_long(
-    ring: &[Pt],
-    a: usize,
+    pts: &[Pt],
     stored: &[Pt],
     path: &[usize],
     tol: f64,
     interrupt: &mut dyn FnMut(),
 ) -> Vec<usize> {
-    let n = ring.len();
-    let p = |k: usize| ring[(a + k) % n];
     let last = path.len() - 1;
     let mut out = Vec::new();
     let mut cur = 0;
@@ -158,12 +156,12 @@ fn merge_long(
             if steps.is_multiple_of(INTERRUPT_EVERY) {
                 interrupt();
             }
-            if !wedge.add(p(j - 1)) {
+            if !wedge.add(pts[j - 1]) {
                 break;
             }
             if j == path[t] {
-                let (allowed, len) = wedge.allows(sj);
-                if allowed && wedge.fits(ring, a, i, j, sj, len) {
+                let (allowed, len2) = wedge.allows(sj);
+                if allowed && wedge.fits(&pts[i + 1..j], sj, len2) {
                     best = t;
                 }
                 if t == last {
@@ -182,16 +180,21 @@ fn merge_long(
 
 /// Directions from `origin` along which a line passes within `tol` of every vertex added so far:
 /// an arc of directions narrower than a half turn, held as its two boundary vectors (`lo` then
-/// `hi`, counter-clockwise), so that every test is a cross product and no angle is computed.
-/// Within a half turn, `d` lies in the arc exactly when `lo × d ≥ 0` and `d × hi ≥ 0`.
+/// `hi`, counter-clockwise), so that every test is the sign of a cross product and no angle is
+/// computed. Within a half turn, `d` lies in the arc exactly when `lo × d ≥ 0` and `d × hi ≥ 0`.
+/// Only signs are tested, so a boundary vector may have any length: a vertex's two boundaries
+/// are kept scaled by its distance, which leaves one square root per vertex and no division.
 struct Wedge {
     origin: Pt,
     tol: f64,
+    /// `tol²`
+    tol2: f64,
     /// `(lo, hi)`; `None` until constrained.
     range: Option<(Pt, Pt)>,
-    /// Farthest vertex added, from `origin`: when a shortcut is shorter, a vertex may lie beyond
-    /// its end, where the line test says nothing, and the vertices are measured exactly.
-    farthest: f64,
+    /// Squared distance of the farthest vertex added, from `origin`: when a shortcut is shorter, a
+    /// vertex may lie beyond its end, where the line test says nothing, and the vertices are
+    /// measured exactly.
+    farthest2: f64,
 }
 
 fn cross(a: Pt, b: Pt) -> f64 {
@@ -208,28 +211,30 @@ impl Wedge {
         Wedge {
             origin,
             tol,
+            tol2: tol * tol,
             range: None,
-            farthest: 0.0,
+            farthest2: 0.0,
         }
     }
 
+    /// `q` from the origin, and its squared length.
     fn rel(&self, q: Pt) -> (Pt, f64) {
         let d = [q[0] - self.origin[0], q[1] - self.origin[1]];
-        (d, (d[0] * d[0] + d[1] * d[1]).sqrt())
+        (d, d[0] * d[0] + d[1] * d[1])
     }
 
     /// Narrow the wedge to lines passing within `tol` of `q` (on its side of the origin).
     /// `false` when no direction is left.
     fn add(&mut self, q: Pt) -> bool {
-        let (d, r) = self.rel(q);
-        self.farthest = self.farthest.max(r);
-        if r <= self.tol {
+        let (d, r2) = self.rel(q);
+        self.farthest2 = self.farthest2.max(r2);
+        if r2 <= self.tol2 {
             return true;
         }
-        // the arc of directions within asin(tol / r) of d, by its two boundaries (d turned by
-        // that angle either way, scaled by r)
-        let s = self.tol / r;
-        let c = (1.0 - s * s).sqrt();
+        // the arc of directions within asin(tol / r) of d, by its two boundaries: d turned by
+        // that angle either way (cosine c = sqrt(r² − tol²) / r, sine s = tol / r), times r
+        let c = (r2 - self.tol2).sqrt();
+        let s = self.tol;
         let a = [c * d[0] + s * d[1], c * d[1] - s * d[0]];
         let b = [c * d[0] - s * d[1], c * d[1] + s * d[0]];
         match self.range {
@@ -263,26 +268,27 @@ impl Wedge {
         }
     }
 
-    /// Does the direction to `q` lie within the wedge? Also its distance from the origin.
+    /// Does the direction to `q` lie within the wedge? Also its squared distance from the origin.
     fn allows(&self, q: Pt) -> (bool, f64) {
-        let (d, r) = self.rel(q);
+        let (d, r2) = self.rel(q);
         let ok = match self.range {
             None => true,
-            Some(_) if r == 0.0 => false,
+            Some(_) if r2 == 0.0 => false,
             Some((lo, hi)) => within(lo, hi, d),
         };
-        (ok, r)
+        (ok, r2)
     }
 
-    /// Exact check of the shortcut `i..j` of the chain starting at ring index `a`, from the origin
-    /// to `pj` at distance `len`, when a vertex may lie beyond its end (else the wedge has already
-    /// proved it).
-    fn fits(&self, ring: &[Pt], a: usize, i: usize, j: usize, pj: Pt, len: f64) -> bool {
-        let n = ring.len();
-        if self.farthest <= len {
+    /// Exact check of the shortcut from the origin to `pj` (at squared distance `len2`) over the
+    /// vertices `between` its ends, when one may lie beyond its end (else the wedge has already
+    /// proved them).
+    fn fits(&self, between: &[Pt], pj: Pt, len2: f64) -> bool {
+        if self.farthest2 <= len2 {
             return true;
         }
-        (i + 1..j).all(|k| dist_to_segment(ring[(a + k) % n], self.origin, pj) <= self.tol)
+        between
+            .iter()
+            .all(|&q| dist_to_segment(q, self.origin, pj) <= self.tol)
     }
 }
 
