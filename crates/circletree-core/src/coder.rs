@@ -137,6 +137,146 @@ pub fn class(u: u64) -> u32 {
     64 - u.leading_zeros()
 }
 
+/// Where coded symbols go: the [`Writer`], or a [`Meter`] that only counts what they would cost.
+/// Both take the same decisions in the same order with the same models, so they agree.
+pub trait Sink {
+    /// One adaptive decision.
+    fn bit(&mut self, m: &mut Bit, b: bool);
+    /// `n` raw bits of `v` (its low `n`), most significant first.
+    fn raw(&mut self, v: u64, n: u32);
+
+    /// A flag with its adaptive model.
+    fn flag(&mut self, m: &mut Bit, b: bool) {
+        self.bit(m, b);
+    }
+
+    /// An integer with its adaptive model.
+    fn int(&mut self, m: &mut IntModel, v: i64) {
+        put_int(self, m, v);
+    }
+}
+
+/// The symbols of one integer (see the module's description), into `s`.
+#[inline(always)]
+fn put_int<S: Sink + ?Sized>(s: &mut S, m: &mut IntModel, v: i64) {
+    let u = v.unsigned_abs();
+    let k = class(u);
+    let pred = m.prev_class;
+    let ctx = m.prev_move;
+    s.bit(&mut m.same[ctx], k == pred);
+    if k != pred {
+        let up = k > pred;
+        s.bit(&mut m.up[ctx], up);
+        let (d, max) = if up {
+            (k - pred - 1, 64 - pred - 1)
+        } else {
+            (pred - k - 1, pred - 1)
+        };
+        for j in 0..max {
+            let more = d > j;
+            s.bit(&mut m.unary[(j as usize).min(11)], more);
+            if !more {
+                break;
+            }
+        }
+        m.prev_move = if up { 1 } else { 2 };
+    } else {
+        m.prev_move = 0;
+    }
+    if k >= 2 {
+        s.bit(&mut m.top[k as usize], (u >> (k - 2)) & 1 == 1);
+        s.raw(u, k - 2);
+    }
+    if u != 0 {
+        s.bit(&mut m.sign[m.prev_sign], v < 0);
+        m.prev_sign = if v < 0 { 2 } else { 1 };
+    } else {
+        m.prev_sign = 0;
+    }
+    m.prev_class = k;
+}
+
+/// Counts what coding symbols would cost, in 1/65536 bit, without coding them: each decision
+/// costs `−log2` of its probability (from a table), each raw bit one bit. The [`Writer`]'s
+/// stream for the same symbols is within [`Meter::bytes`]'s bounds.
+pub struct Meter {
+    cost: u64,
+    decisions: u64,
+    table: &'static [u32; ONE as usize + 1],
+}
+
+/// `−log2(p / 4096)` in 1/65536 bit, for `p` in 0..=4096 (0 unused).
+fn cost_table() -> &'static [u32; ONE as usize + 1] {
+    static TABLE: std::sync::OnceLock<[u32; ONE as usize + 1]> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| {
+        let mut t = [0u32; ONE as usize + 1];
+        for (p, c) in t.iter_mut().enumerate().skip(1) {
+            *c = (-(p as f64 / f64::from(ONE)).log2() * 65536.0).round() as u32;
+        }
+        t
+    })
+}
+
+impl Default for Meter {
+    fn default() -> Self {
+        Meter {
+            cost: 0,
+            decisions: 0,
+            table: cost_table(),
+        }
+    }
+}
+
+impl Meter {
+    /// Bounds on the length of the [`Writer`]'s finished stream for the same symbols, in bytes.
+    /// The coder's range is at least 2^24 before each decision, so its truncated split loses at
+    /// most 2^-12 of the range (under 0.00036 bit) and gains no more; the table is rounded to
+    /// 2^-17 bit; raw bits lose under 2^-16 bit each. The finished stream is the bytes shifted
+    /// out (a byte per 8 bits of cost, less up to one), plus the flush, less the first byte and
+    /// the trailing zeros (a few bytes, more only when the last symbols are nearly free):
+    /// margins of a few bytes either way cover both, and are checked against the writer.
+    pub fn bytes(&self) -> (usize, usize) {
+        let slack = self.decisions * 24 + (1 << 16); // 0.00037 bit a decision, and one bit
+        let lo = self.cost.saturating_sub(slack) / (8 << 16);
+        let hi = (self.cost + slack).div_ceil(8 << 16);
+        (
+            lo.saturating_sub(METER_MARGIN) as usize,
+            (hi + METER_MARGIN) as usize,
+        )
+    }
+}
+
+/// Bytes either side of [`Meter::bytes`]'s estimate for the flush and the trimmed zeros.
+const METER_MARGIN: u64 = 8;
+
+impl Sink for Meter {
+    #[inline(always)]
+    fn bit(&mut self, m: &mut Bit, b: bool) {
+        let p = u32::from(m.0);
+        let q = std::hint::select_unpredictable(b, ONE as u32 - p, p);
+        self.cost += u64::from(self.table[q as usize]);
+        self.decisions += 1;
+        *m = m.after(b);
+    }
+
+    #[inline(always)]
+    fn raw(&mut self, _v: u64, n: u32) {
+        self.cost += u64::from(n) << 16;
+    }
+}
+
+impl Sink for Writer {
+    #[inline(always)]
+    fn bit(&mut self, m: &mut Bit, b: bool) {
+        Writer::bit(self, m, b);
+    }
+
+    #[inline(always)]
+    fn raw(&mut self, v: u64, n: u32) {
+        Writer::raw(self, v, n);
+    }
+}
+
 /// Writes integers and bits.
 pub struct Writer {
     low: u64,
@@ -218,41 +358,7 @@ impl Writer {
 
     /// Code an integer with its adaptive model.
     pub fn int(&mut self, m: &mut IntModel, v: i64) {
-        let u = v.unsigned_abs();
-        let k = class(u);
-        let pred = m.prev_class;
-        let ctx = m.prev_move;
-        self.bit(&mut m.same[ctx], k == pred);
-        if k != pred {
-            let up = k > pred;
-            self.bit(&mut m.up[ctx], up);
-            let (d, max) = if up {
-                (k - pred - 1, 64 - pred - 1)
-            } else {
-                (pred - k - 1, pred - 1)
-            };
-            for j in 0..max {
-                let more = d > j;
-                self.bit(&mut m.unary[(j as usize).min(11)], more);
-                if !more {
-                    break;
-                }
-            }
-            m.prev_move = if up { 1 } else { 2 };
-        } else {
-            m.prev_move = 0;
-        }
-        if k >= 2 {
-            self.bit(&mut m.top[k as usize], (u >> (k - 2)) & 1 == 1);
-            self.raw(u, k - 2);
-        }
-        if u != 0 {
-            self.bit(&mut m.sign[m.prev_sign], v < 0);
-            m.prev_sign = if v < 0 { 2 } else { 1 };
-        } else {
-            m.prev_sign = 0;
-        }
-        m.prev_class = k;
+        put_int(self, m, v);
     }
 
     /// The coded bytes: the first (always zero) byte and trailing zero bytes dropped.
@@ -435,6 +541,43 @@ mod tests {
         }
     }
 
+    /// The meter's bounds hold the writer's finished length for `f`'s symbols.
+    fn metered_within_bounds(
+        f: impl Fn(&mut dyn FnMut(usize, i64, bool)),
+    ) -> (usize, usize, usize) {
+        let (mut w, mut m) = (Writer::default(), Meter::default());
+        let mut wm = [IntModel::default(), IntModel::expecting(5)];
+        let mut mm = wm.clone();
+        let (mut wf, mut mf) = (Bit::default(), Bit::default());
+        f(&mut |k, v, flag| {
+            w.int(&mut wm[k], v);
+            w.flag(&mut wf, flag);
+            m.int(&mut mm[k], v);
+            m.flag(&mut mf, flag);
+        });
+        let n = w.finish().len();
+        let (lo, hi) = m.bytes();
+        assert!(lo <= n && n <= hi, "{lo} <= {n} <= {hi}");
+        (lo, n, hi)
+    }
+
+    #[test]
+    fn the_meter_bounds_long_runs_and_skewed_streams() {
+        // nearly free symbols at the end (the trimmed zero bytes), both ways round, and raw bits
+        for (v, flag) in [(0, false), (0, true), (1, false), (-3, true)] {
+            metered_within_bounds(|put| (0..20_000).for_each(|_| put(0, v, flag)));
+            metered_within_bounds(|put| {
+                (0..5_000).for_each(|i| put(1, (i * 7919) % 20_000 - 10_000, i % 3 == 0));
+                (0..20_000).for_each(|_| put(0, v, flag));
+            });
+        }
+        let (lo, n, hi) = metered_within_bounds(|put| {
+            (0..100_000).for_each(|i| put(i % 2, (i as i64 * 7919) % 601 - 300, i % 5 == 0))
+        });
+        // and are tight enough to rank plans: a few bytes in a thousand
+        assert!(hi - lo < n / 100 + 20, "{lo} {n} {hi}");
+    }
+
     proptest! {
         #[test]
         fn integers_round_trip(vals in proptest::collection::vec(any::<i64>().prop_filter("not MIN", |v| *v != i64::MIN), 0..200),
@@ -454,6 +597,17 @@ mod tests {
                 prop_assert_eq!(r.int(&mut b).unwrap(), y);
                 prop_assert_eq!(r.flag(&mut f).unwrap(), x > y);
             }
+        }
+
+        #[test]
+        fn the_meter_bounds_the_writer(vals in proptest::collection::vec(any::<i64>().prop_filter("not MIN", |v| *v != i64::MIN), 0..300),
+                                       small in proptest::collection::vec(-300i64..300, 1..300)) {
+            metered_within_bounds(|put| {
+                for (&x, &y) in vals.iter().zip(small.iter().cycle()) {
+                    put(0, x, x > y);
+                    put(1, y, y > 0);
+                }
+            });
         }
 
         #[test]

@@ -7,9 +7,9 @@
 //! Exact predicates decide "lies on an edge", as GEOS does for `ST_IsValid`. Segments are found
 //! with [`crate::box_grid`]: two linear passes to build, a cell or a few per vertex looked up.
 
+use crate::box_grid::BoxIndex;
 use crate::geometry::{Pt, Shape};
 use robust::{orient2d, Coord};
-use crate::box_grid::BoxIndex;
 use rustc_hash::FxHashMap;
 
 fn on_segment(a: Pt, b: Pt, p: Pt) -> bool {
@@ -52,7 +52,12 @@ pub fn pin(shape: &mut Shape) -> (Vec<Vec<Vec<usize>>>, Vec<Pt>) {
             for i in 0..r.len() {
                 let (a, b) = (r[i], r[(i + 1) % r.len()]);
                 segs.push((
-                    [a[0].min(b[0]), a[1].min(b[1]), a[0].max(b[0]), a[1].max(b[1])],
+                    [
+                        a[0].min(b[0]),
+                        a[1].min(b[1]),
+                        a[0].max(b[0]),
+                        a[1].max(b[1]),
+                    ],
                     (k, i),
                 ));
             }

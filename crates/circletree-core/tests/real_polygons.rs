@@ -117,6 +117,9 @@ fn every_polygon_within_10_25_100() {
             let (ct, bytes, report) = encode_within_stored(&s.wkb, s.srid, t, None, &mut || {})?;
             // the bytes it hands the glue to store are the value's own
             assert_eq!(bytes, ct.to_bytes(), "{} at {t}", s.name);
+            // the bounds that rank the plans hold the value's size
+            let (lo, hi) = ct.size_bounds();
+            assert!(lo <= bytes.len() && bytes.len() <= hi, "{} at {t}", s.name);
             Ok((ct, report))
         });
     }

@@ -307,8 +307,14 @@ fn within_verdict(
     // value is the same (a run the order would not have needed is dropped).
     let worth_it =
         prep.vertices >= parallel::MIN_VERTICES && specs.len() > 1 && parallel::threads() > 1;
-    let price = |plan: &Plan, interrupt: &mut dyn FnMut()| {
-        let (result, plan) = (unchecked(&prep, srid, plan, max_error, interrupt), *plan);
+    // The first plan, which most often wins, is priced by writing it (its bytes are then the
+    // result's when its start needs no repair); the others by bounds on their size, written only
+    // where the bounds leave the choice open.
+    let price = |plan: &Plan, exact: bool, interrupt: &mut dyn FnMut()| {
+        let (result, plan) = (
+            unchecked(&prep, srid, plan, max_error, exact, interrupt),
+            *plan,
+        );
         (
             result.map(|(priced, start)| (priced, Start::Rings(start))),
             plan,
@@ -321,7 +327,7 @@ fn within_verdict(
         |i| {
             first
                 .iter()
-                .map(|p| match price(p, i) {
+                .map(|p| match price(p, true, i) {
                     (Ok((priced, Start::Rings(start))), plan) if worth_it => {
                         let ran = run(&prep, srid, &plan, max_error, Some(start), i);
                         (Ok((priced, Start::Ran(ran))), plan)
@@ -330,7 +336,7 @@ fn within_verdict(
                 })
                 .collect::<Vec<_>>()
         },
-        |i| rest.iter().map(|p| price(p, i)).collect::<Vec<_>>(),
+        |i| rest.iter().map(|p| price(p, false, i)).collect::<Vec<_>>(),
     );
     priced.extend(rest);
     let mut plans = Vec::new();
@@ -342,14 +348,29 @@ fn within_verdict(
             }
         }
     }
-    plans.sort_by_key(|p| p.0 .1.len());
+    // The order of the exact sizes: where two plans' bounds overlap, both are written.
+    for i in 0..plans.len() {
+        for j in i + 1..plans.len() {
+            let ((a0, a1), (b0, b1)) = (plans[i].0 .1.range(), plans[j].0 .1.range());
+            if a0 <= b1 && b0 <= a1 {
+                for k in [i, j] {
+                    let (ct, price) = &mut plans[k].0;
+                    price.make_exact(ct);
+                }
+            }
+        }
+    }
+    plans.sort_by_key(|p| p.0 .1.range().0);
     let mut best: Option<(CircleTree, Vec<u8>, Report)> = None;
-    for ((priced, priced_bytes), plan, start) in plans {
-        if best
-            .as_ref()
-            .is_some_and(|b| b.1.len() <= priced_bytes.len())
-        {
-            break;
+    for ((priced, mut price), plan, start) in plans {
+        if let Some(b) = &best {
+            let (lo, hi) = price.range();
+            if b.1.len() <= lo {
+                break;
+            }
+            if b.1.len() <= hi && b.1.len() <= price.make_exact(&priced) {
+                break;
+            }
         }
         let ran = match start {
             Start::Ran(ran) => ran,
@@ -358,10 +379,9 @@ fn within_verdict(
         match ran {
             Ok((ct, report)) => {
                 // most starts need no repair: the result is then the value already written
-                let bytes = if ct == priced {
-                    priced_bytes
-                } else {
-                    ct.to_bytes()
+                let bytes = match price {
+                    Price::Exact(bytes) if ct == priced => bytes,
+                    _ => ct.to_bytes(),
                 };
                 if best.as_ref().is_none_or(|b| bytes.len() < b.1.len()) {
                     best = Some((ct, bytes, report));
@@ -376,6 +396,31 @@ fn within_verdict(
         (Some((ct, bytes, report)), _) => Ok((ct, bytes, report)),
         (None, Some(e)) => Err(e),
         (None, None) => Err(range_error(max_error)),
+    }
+}
+
+/// What a plan's start would store: its bytes, or bounds on their number
+/// ([`CircleTree::size_bounds`]).
+enum Price {
+    Exact(Vec<u8>),
+    Bounds(usize, usize),
+}
+
+impl Price {
+    /// The least and the most bytes.
+    fn range(&self) -> (usize, usize) {
+        match self {
+            Price::Exact(b) => (b.len(), b.len()),
+            Price::Bounds(lo, hi) => (*lo, *hi),
+        }
+    }
+
+    /// Write `ct` if only its bounds were known; its exact size.
+    fn make_exact(&mut self, ct: &CircleTree) -> usize {
+        if let Price::Bounds(..) = self {
+            *self = Price::Exact(ct.to_bytes());
+        }
+        self.range().0
     }
 }
 
@@ -562,17 +607,18 @@ fn tree(
     }
 }
 
-/// A plan's starting rings on its first grid, and the value and bytes they would make if nothing
-/// needed repair (the repair loop adds a point or two in a thousand, so this ranks plans as their
-/// results rank, for a fraction of the work).
+/// A plan's starting rings on its first grid, and the value they would make if nothing needed
+/// repair with its price (the repair loop adds a point or two in a thousand, so this ranks plans
+/// as their results rank, for a fraction of the work): its bytes when `exact`, else bounds.
 #[allow(clippy::type_complexity)]
 fn unchecked(
     prep: &Prepared,
     srid: i32,
     plan: &Plan,
     max_error: f64,
+    exact: bool,
     interrupt: &mut dyn FnMut(),
-) -> Result<((CircleTree, Vec<u8>), (Vec<RingState>, Report))> {
+) -> Result<((CircleTree, Price), (Vec<RingState>, Report))> {
     let g = Grid::new(plan.grid);
     let allowed = Touches::default();
     let ctx = Context {
@@ -592,8 +638,13 @@ fn unchecked(
         parts,
         0,
     );
-    let bytes = ct.to_bytes();
-    Ok(((ct, bytes), (rings, report)))
+    let price = if exact {
+        Price::Exact(ct.to_bytes())
+    } else {
+        let (lo, hi) = ct.size_bounds();
+        Price::Bounds(lo, hi)
+    };
+    Ok(((ct, price), (rings, report)))
 }
 
 /// Run the closed loop for one plan, refining the grid when even every vertex is not enough.

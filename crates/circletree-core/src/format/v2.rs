@@ -13,7 +13,7 @@
 //! deltas from the bounding box and the number of circles, the radii from `min_radius`.
 
 use super::{Circle, Cursor};
-use crate::coder::{class, Bit, IntModel, Reader, Writer};
+use crate::coder::{class, Bit, IntModel, Meter, Reader, Sink, Writer};
 use crate::error::{Error, Result};
 
 /// Adaptive models of the stream, in their starting state for a value.
@@ -46,7 +46,7 @@ impl Models {
     }
 
     /// Code one circle after the one at `cur`.
-    pub fn put(&mut self, w: &mut Writer, c: &Circle, cur: (i64, i64)) {
+    pub fn put<S: Sink>(&mut self, w: &mut S, c: &Circle, cur: (i64, i64)) {
         let is_circle = c.r != 0;
         let (k, p) = (is_circle as usize, self.prev_circle as usize);
         w.flag(&mut self.kind[p], is_circle);
@@ -114,9 +114,23 @@ impl Models {
 
 /// The coded stream of a value's parts.
 pub fn write(parts: &[Vec<Vec<Circle>>], cur: Cursor) -> Vec<u8> {
+    let mut w = Writer::default();
+    code(parts, cur, &mut w);
+    w.finish()
+}
+
+/// What [`write`]'s stream would cost, without writing it (bounds on its length:
+/// [`Meter::bytes`]).
+pub fn meter(parts: &[Vec<Vec<Circle>>], cur: Cursor) -> Meter {
+    let mut m = Meter::default();
+    code(parts, cur, &mut m);
+    m
+}
+
+/// Every symbol of a value's parts, in order, into `w`.
+fn code<S: Sink>(parts: &[Vec<Vec<Circle>>], cur: Cursor, w: &mut S) {
     let n: usize = parts.iter().flatten().map(Vec::len).sum();
     let mut m = Models::new(cur.extent, n as u64, cur.min_radius);
-    let mut w = Writer::default();
     for part in parts {
         w.int(&mut m.counts, part.len() as i64 - 1);
     }
@@ -125,10 +139,9 @@ pub fn write(parts: &[Vec<Vec<Circle>>], cur: Cursor) -> Vec<u8> {
     }
     let mut at = cur.start;
     for c in parts.iter().flatten().flatten() {
-        m.put(&mut w, c, at);
+        m.put(w, c, at);
         at = (c.x, c.y);
     }
-    w.finish()
 }
 
 /// Where the bits of a stream go, estimated by the models' own costs just before each symbol is
