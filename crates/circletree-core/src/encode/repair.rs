@@ -28,7 +28,8 @@ pub(super) struct RingState {
     span_of: Vec<u32>,
     /// `starts[s]..starts[s + 1]`: the segments of `recon` that span `s` starts.
     starts: Vec<usize>,
-    /// The rebuilt pieces (true arcs), for [`arcs::problems`].
+    /// The rebuilt pieces (true arcs), for [`arcs::problems`]; none when no ring of the value
+    /// has a circle with a radius (every piece is then a segment of `recon`).
     spans: crate::reconstruct::Spans,
     /// Spans whose stroke may differ from the last check.
     dirty: Vec<bool>,
@@ -236,6 +237,21 @@ fn dirty_spans(entries: &[Entry]) -> Vec<bool> {
 fn stroke_dedup(spans: &crate::reconstruct::Spans, tol: f64) -> (Vec<Pt>, Vec<u32>) {
     let (mut pts, mut ids) = (Vec::new(), Vec::new());
     stroke_spans(spans, tol, &mut pts, Some(&mut ids));
+    dedup(pts, ids)
+}
+
+/// A ring of points stroked: between two zero-radius circles the rebuild is the segment joining
+/// their centres, so the stroke is the centres, span `i` starting at centre `i` (what
+/// [`stroke_dedup`] makes of their spans, without building them).
+fn points_dedup(circles: &[[f64; 3]]) -> (Vec<Pt>, Vec<u32>) {
+    dedup(
+        circles.iter().map(|c| [c[0], c[1]]).collect(),
+        (0..circles.len() as u32).collect(),
+    )
+}
+
+/// Drop consecutive repeated points (and the closing repeats of the first), with their spans.
+fn dedup(pts: Vec<Pt>, ids: Vec<u32>) -> (Vec<Pt>, Vec<u32>) {
     let mut rp: Vec<Pt> = Vec::with_capacity(pts.len());
     let mut ri: Vec<u32> = Vec::with_capacity(pts.len());
     for (p, id) in pts.into_iter().zip(ids) {
@@ -385,6 +401,8 @@ pub(super) fn verify_and_repair(
         round += 1;
         report.rounds = round;
         interrupt();
+        // Repair never gives a circle a radius, so once none has one, none will.
+        let arcs = rings.iter().any(|st| st.entries.iter().any(|e| e.r != 0.0));
         for st in rings.iter_mut() {
             st.dirty = dirty_spans(&st.entries);
             if !st.dirty.iter().any(|&d| d) {
@@ -399,10 +417,22 @@ pub(super) fn verify_and_repair(
                 .iter()
                 .map(|c| [unq(c.x), unq(c.y), unq(c.r)])
                 .collect();
-            st.spans = ring_spans(&fc);
-            (st.recon, st.span_of) = stroke_dedup(&st.spans, g);
+            (st.spans, (st.recon, st.span_of)) = if arcs {
+                let spans = ring_spans(&fc);
+                let stroke = stroke_dedup(&spans, g);
+                (spans, stroke)
+            } else {
+                (Vec::new(), points_dedup(&fc))
+            };
+            // `span_of` ascends: where each span's segments start, in one pass
+            let mut at = 0;
             st.starts = (0..=st.m())
-                .map(|s| st.span_of.partition_point(|&x| (x as usize) < s))
+                .map(|s| {
+                    while at < st.span_of.len() && (st.span_of[at] as usize) < s {
+                        at += 1;
+                    }
+                    at
+                })
                 .collect();
         }
         interrupt();
