@@ -151,6 +151,72 @@ fn bbox(e: &rstar::AABB<Pt>) -> Bbox {
     [e.lower()[0], e.lower()[1], e.upper()[0], e.upper()[1]]
 }
 
+/// What one pair of segments shows: a problem, or a touch at an allowed shared vertex (whether
+/// the rings cross there is decided from both rings' neighbours).
+enum Found {
+    Bad,
+    Touch((usize, usize, usize, usize)),
+}
+
+/// Segment `i` of ring `k` (from `a` to `b`) against segment `j` of ring `k2`, whose boxes meet;
+/// `None` when all is well or the pair is another's to report (each pair once when `changed`).
+fn pair_problem(
+    rings: &[RingRef],
+    allowed: &Touches,
+    changed: bool,
+    (k, i): (usize, usize),
+    (a, b): (Pt, Pt),
+    (k2, j): (usize, usize),
+) -> Option<Found> {
+    if changed && (k2, j) <= (k, i) {
+        return None;
+    }
+    let n = rings[k].pts.len();
+    let p2 = rings[k2].pts;
+    let n2 = p2.len();
+    let (c, d) = (p2[j], p2[(j + 1) % n2]);
+    let adjacent = k == k2 && (j == (i + 1) % n || i == (j + 1) % n);
+    if adjacent {
+        // Consecutive segments share one end point; they may not fold back along each other.
+        let (shared, x, y) = if j == (i + 1) % n {
+            (b, a, d)
+        } else {
+            (a, b, c)
+        };
+        if o(x, shared, y) == 0.0 {
+            let dot =
+                (x[0] - shared[0]) * (y[0] - shared[0]) + (x[1] - shared[1]) * (y[1] - shared[1]);
+            if dot > 0.0 {
+                return Some(Found::Bad);
+            }
+        }
+        return None;
+    }
+    if !segments_touch(a, b, c, d) {
+        return None;
+    }
+    if k != k2 {
+        // Different rings: a touch at one shared, allowed vertex is fine.
+        let shared = [
+            (a, i, c, j),
+            (a, i, d, (j + 1) % n2),
+            (b, (i + 1) % n, c, j),
+            (b, (i + 1) % n, d, (j + 1) % n2),
+        ]
+        .into_iter()
+        .find(|(x, _, y, _)| x == y);
+        if let Some((p, vi, _, vj)) = shared {
+            let (x, y) = (if p == a { b } else { a }, if p == c { d } else { c });
+            let overlap = o(p, x, y) == 0.0
+                && (x[0] - p[0]) * (y[0] - p[0]) + (x[1] - p[1]) * (y[1] - p[1]) > 0.0;
+            if !overlap && allowed.contains(&touch_key(p)) {
+                return Some(Found::Touch((k, vi, k2, vj)));
+            }
+        }
+    }
+    Some(Found::Bad)
+}
+
 /// Problems found: `(ring index in the input slice, segment index)`; `usize::MAX` as the segment
 /// means the whole ring (degenerate, or misplaced).
 pub fn problems(rings: &[RingRef], interrupt: &mut dyn FnMut()) -> Vec<(usize, usize)> {
@@ -202,8 +268,6 @@ pub fn problems_where(
         changed.is_none_or(|c| c.get(k).and_then(|r| r.get(i)) != Some(&false))
     };
     let mut bad = Vec::new();
-    // (ring, vertex, other ring, its vertex) where two rings share an allowed vertex
-    let mut touches: rustc_hash::FxHashSet<(usize, usize, usize, usize)> = Default::default();
     let mut items = Vec::new();
     for (k, r) in rings.iter().enumerate() {
         let n = r.pts.len();
@@ -234,70 +298,54 @@ pub fn problems_where(
     // the changed segments, by (ring, segment): a grid, measured several times faster than the
     // R-tree on boundaries, whose segments are short and even (the tree when they are not)
     let index = BoxIndex::new(hot.iter().map(|g| (bbox(&g.envelope()), g.data)).collect());
-    for (count, item) in items.iter().enumerate() {
-        if count % 8192 == 0 {
-            interrupt();
-        }
-        let (k, i) = item.data;
-        let item_changed = is_changed(k, i);
-        if !item_changed && !near.may_meet(&item.envelope()) {
-            continue;
-        }
-        let pts = rings[k].pts;
-        let n = pts.len();
-        let (a, b) = (pts[i], pts[(i + 1) % n]);
-        index.for_each_meeting(&bbox(&item.envelope()), |(k2, j)| {
-            if item_changed && (k2, j) <= (k, i) {
-                return;
+    // Each segment's pairs are found independently: on a large input the two halves of the
+    // segments run side by side, their findings then taken in order, as one pass would.
+    let pairs = |items: &[GeomWithData<Rectangle<Pt>, (usize, usize)>],
+                 interrupt: &mut dyn FnMut()| {
+        let mut bad = Vec::new();
+        let mut touches = Vec::new();
+        for (count, item) in items.iter().enumerate() {
+            if count % 8192 == 0 {
+                interrupt();
             }
-            let p2 = rings[k2].pts;
-            let n2 = p2.len();
-            let (c, d) = (p2[j], p2[(j + 1) % n2]);
-            let adjacent = k == k2 && (j == (i + 1) % n || i == (j + 1) % n);
-            if adjacent {
-                // Consecutive segments share one end point; they may not fold back along each other.
-                let (shared, x, y) = if j == (i + 1) % n {
-                    (b, a, d)
-                } else {
-                    (a, b, c)
-                };
-                if o(x, shared, y) == 0.0 {
-                    let dot = (x[0] - shared[0]) * (y[0] - shared[0])
-                        + (x[1] - shared[1]) * (y[1] - shared[1]);
-                    if dot > 0.0 {
-                        bad.push((k, i));
-                        bad.push((k2, j));
+            let (k, i) = item.data;
+            let item_changed = is_changed(k, i);
+            if !item_changed && !near.may_meet(&item.envelope()) {
+                continue;
+            }
+            let pts = rings[k].pts;
+            let n = pts.len();
+            let (a, b) = (pts[i], pts[(i + 1) % n]);
+            index.for_each_meeting(&bbox(&item.envelope()), |(k2, j)| {
+                if let Some(found) =
+                    pair_problem(rings, allowed, item_changed, (k, i), (a, b), (k2, j))
+                {
+                    match found {
+                        Found::Bad => {
+                            bad.push((k, i));
+                            bad.push((k2, j));
+                        }
+                        Found::Touch(t) => touches.push(t),
                     }
                 }
-                return;
-            }
-            if !segments_touch(a, b, c, d) {
-                return;
-            }
-            if k != k2 {
-                // Different rings: a touch at one shared, allowed vertex is fine (whether they
-                // cross there is decided below from both rings' neighbours).
-                let shared = [
-                    (a, i, c, j),
-                    (a, i, d, (j + 1) % n2),
-                    (b, (i + 1) % n, c, j),
-                    (b, (i + 1) % n, d, (j + 1) % n2),
-                ]
-                .into_iter()
-                .find(|(x, _, y, _)| x == y);
-                if let Some((p, vi, _, vj)) = shared {
-                    let (x, y) = (if p == a { b } else { a }, if p == c { d } else { c });
-                    let overlap = o(p, x, y) == 0.0
-                        && (x[0] - p[0]) * (y[0] - p[0]) + (x[1] - p[1]) * (y[1] - p[1]) > 0.0;
-                    if !overlap && allowed.contains(&touch_key(p)) {
-                        touches.insert((k, vi, k2, vj));
-                        return;
-                    }
-                }
-            }
-            bad.push((k, i));
-            bad.push((k2, j));
-        });
+            });
+        }
+        (bad, touches)
+    };
+    let half = items.len() / 2;
+    let ((bad_a, touches_a), (bad_b, touches_b)) = crate::parallel::join(
+        items.len() as u64 >= crate::parallel::MIN_VERTICES,
+        interrupt,
+        |i| pairs(&items[..half], i),
+        |i| pairs(&items[half..], i),
+    );
+    bad.extend(bad_a);
+    bad.extend(bad_b);
+    // (ring, vertex, other ring, its vertex) where two rings share an allowed vertex, inserted
+    // in the order one pass would (the set's order decides the order of what is reported)
+    let mut touches: rustc_hash::FxHashSet<(usize, usize, usize, usize)> = Default::default();
+    for t in touches_a.into_iter().chain(touches_b) {
+        touches.insert(t);
     }
     for &(k, vi, k2, vj) in &touches {
         let (pa, pb) = (rings[k].pts, rings[k2].pts);
