@@ -16,7 +16,7 @@
 #![allow(clippy::needless_range_loop)]
 #[path = "../tests/common/mod.rs"]
 mod common;
-use circletree_core::coder::{class, Bit, IntModel, Writer};
+use circletree_core::coder::{class, Bit, IntModel, Sink, Writer};
 use circletree_core::encode::encode_within;
 use circletree_core::format::v2::Models;
 use circletree_core::format::Circle;

@@ -351,16 +351,6 @@ impl Writer {
         }
     }
 
-    /// Code a flag with its adaptive model.
-    pub fn flag(&mut self, m: &mut Bit, b: bool) {
-        self.bit(m, b);
-    }
-
-    /// Code an integer with its adaptive model.
-    pub fn int(&mut self, m: &mut IntModel, v: i64) {
-        put_int(self, m, v);
-    }
-
     /// The coded bytes: the first (always zero) byte and trailing zero bytes dropped.
     pub fn finish(mut self) -> Vec<u8> {
         for _ in 0..5 {
