@@ -24,6 +24,7 @@ pub mod metrics;
 pub mod min_points;
 pub mod parallel;
 pub mod picture;
+pub mod proof;
 pub mod reconstruct;
 pub mod text;
 pub mod touch;

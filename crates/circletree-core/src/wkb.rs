@@ -17,6 +17,9 @@ pub struct Input {
     pub shape: Shape,
     /// True when the input had Z or M values, which were dropped.
     pub dropped_zm: bool,
+    /// True when every ring was read as it was given: closed, at least four points, no point
+    /// repeated in a row, no empty ring or part left out (what [`crate::proof`] may be asked).
+    pub as_given: bool,
 }
 
 const TYPE_NAMES: [&str; 18] = [
@@ -88,15 +91,16 @@ pub fn read(buf: &[u8]) -> Result<Input> {
         return Err(Error::UnsupportedGeometry(name.to_string()));
     }
     let geom = ::wkb::reader::read_wkb(buf).map_err(|e| Error::BadWkb(e.to_string()))?;
+    let mut as_given = true;
     let shape = match geom.as_type() {
         GeometryType::Polygon(p) => Shape {
             kind: Kind::Polygon,
-            parts: read_polygon(p)?.into_iter().collect(),
+            parts: read_polygon(p, &mut as_given)?.into_iter().collect(),
         },
         GeometryType::MultiPolygon(mp) => {
             let mut parts = Vec::with_capacity(mp.num_polygons().min(1 << 16));
             for p in mp.polygons() {
-                if let Some(poly) = read_polygon(&p)? {
+                if let Some(poly) = read_polygon(&p, &mut as_given)? {
                     parts.push(poly);
                 }
             }
@@ -110,20 +114,22 @@ pub fn read(buf: &[u8]) -> Result<Input> {
     Ok(Input {
         shape,
         dropped_zm: has_zm,
+        as_given,
     })
 }
 
-fn read_polygon(p: &impl PolygonTrait<T = f64>) -> Result<Option<Polygon>> {
+fn read_polygon(p: &impl PolygonTrait<T = f64>, as_given: &mut bool) -> Result<Option<Polygon>> {
     let Some(ext) = p.exterior() else {
+        *as_given = false;
         return Ok(None);
     };
-    let shell = read_ring(&ext)?;
+    let shell = read_ring(&ext, as_given)?;
     if shell.is_empty() {
         return Ok(None);
     }
     let mut poly = vec![shell];
     for hole in p.interiors() {
-        let r = read_ring(&hole)?;
+        let r = read_ring(&hole, as_given)?;
         if !r.is_empty() {
             poly.push(r);
         }
@@ -131,7 +137,7 @@ fn read_polygon(p: &impl PolygonTrait<T = f64>) -> Result<Option<Polygon>> {
     Ok(Some(poly))
 }
 
-fn read_ring(ls: &impl LineStringTrait<T = f64>) -> Result<Ring> {
+fn read_ring(ls: &impl LineStringTrait<T = f64>, as_given: &mut bool) -> Result<Ring> {
     let mut ring: Ring = Vec::with_capacity(ls.num_coords());
     for c in ls.coords() {
         let (x, y) = (c.x(), c.y());
@@ -140,7 +146,12 @@ fn read_ring(ls: &impl LineStringTrait<T = f64>) -> Result<Ring> {
         }
         ring.push([x, y]);
     }
+    let given = ring.len();
+    let closed = given >= 4 && ring.first() == ring.last();
     dedup_ring(&mut ring);
+    if !closed || ring.len() + 1 != given {
+        *as_given = false;
+    }
     Ok(ring)
 }
 

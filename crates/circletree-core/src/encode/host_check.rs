@@ -8,6 +8,12 @@
 //! outcome is what the caller would get by checking first and encoding after: an error found while
 //! reading the input or its parameters comes first, then the host's verdict, then the encoder's
 //! result. An invalid verdict stops the encoder at its next interrupt check.
+//!
+//! Before either, the input is read once and [`crate::proof`] asked whether it is valid beyond
+//! doubt (every real polygon of `tests/data`, in about a third of the host's time): then the
+//! host is not asked at all and the encoder starts from what was read. Only an input the proof
+//! cannot decide goes to the host, so what is accepted and refused, and with which reason, stays
+//! the host's.
 
 use super::Error;
 use crate::error::Result;
@@ -45,8 +51,14 @@ pub(super) fn beside<T: Send>(
     wkb: &[u8],
     check: HostCheck<impl FnOnce() -> bool, impl FnOnce() -> String>,
     interrupt: &mut dyn FnMut(),
-    encode: impl FnOnce(Verdict<'_>, &mut dyn FnMut()) -> Result<T> + Send,
+    encode: impl FnOnce(Verdict<'_>, Option<crate::wkb::Input>, &mut dyn FnMut()) -> Result<T> + Send,
 ) -> Result<T> {
+    // (an input that cannot be read is left to the encoder, which says why in its own order)
+    if let Ok(input) = crate::wkb::read(wkb) {
+        if input.as_given && crate::proof::proves_valid(&input.shape, interrupt) {
+            return encode(Verdict::Known(None), Some(input), interrupt);
+        }
+    }
     let read = AtomicBool::new(false);
     let invalid = AtomicBool::new(false);
     let (reason, encoded) = parallel::join(
@@ -68,7 +80,7 @@ pub(super) fn beside<T: Send>(
                 i();
             };
             let run = catch_unwind(AssertUnwindSafe(|| {
-                encode(Verdict::Pending(&read), &mut stop_if_invalid)
+                encode(Verdict::Pending(&read), None, &mut stop_if_invalid)
             }));
             match run {
                 Ok(result) => Some(result),
@@ -95,8 +107,21 @@ mod tests {
     use super::*;
 
     fn square(n: usize) -> Vec<u8> {
+        square_as(n, false)
+    }
+
+    /// The same square, its first point given twice when `repeat`: still valid, but not read
+    /// as given, so [`crate::proof`] leaves it to the host.
+    fn repeated(n: usize) -> Vec<u8> {
+        square_as(n, true)
+    }
+
+    fn square_as(n: usize, repeat: bool) -> Vec<u8> {
         // a square with `n` vertices a side, as little-endian WKB
         let mut pts = Vec::new();
+        if repeat {
+            pts.push((0.0, 0.0));
+        }
         for k in 0..4 {
             for j in 0..n {
                 let t = j as f64 / n as f64 * 1000.0;
@@ -121,13 +146,22 @@ mod tests {
     }
 
     fn within(wkb: &[u8], max_error: f64, valid: bool) -> (Result<Vec<u8>>, usize) {
+        within_asked(wkb, max_error, valid).0
+    }
+
+    /// [`within`], and whether the host was asked at all.
+    fn within_asked(wkb: &[u8], max_error: f64, valid: bool) -> ((Result<Vec<u8>>, usize), bool) {
         let mut reasons = 0;
+        let asked = std::cell::Cell::new(false);
         let r = super::super::encode_within_host_checked(
             wkb,
             0,
             max_error,
             HostCheck {
-                is_valid: || valid,
+                is_valid: || {
+                    asked.set(true);
+                    valid
+                },
                 reason: || {
                     reasons += 1;
                     "Self-intersection[5 5]".to_string()
@@ -136,27 +170,30 @@ mod tests {
             &mut || {},
         )
         .map(|(_, bytes, _)| bytes);
-        (r, reasons)
+        ((r, reasons), asked.get())
     }
 
     #[test]
     fn valid_inputs_give_the_bytes_of_a_check_made_first() {
         // below and above the size checked beside the encoder
         for n in [10, 2_000] {
-            let wkb = square(n);
-            let (beside, reasons) = within(&wkb, 0.5, true);
-            let first = super::super::encode_within_stored(&wkb, 0, 0.5, None, &mut || {})
-                .unwrap()
-                .1;
-            assert_eq!(beside.unwrap(), first);
-            assert_eq!(reasons, 0);
+            for (wkb, proved) in [(square(n), true), (repeated(n), false)] {
+                let ((beside, reasons), asked) = within_asked(&wkb, 0.5, true);
+                let first = super::super::encode_within_stored(&wkb, 0, 0.5, None, &mut || {})
+                    .unwrap()
+                    .1;
+                assert_eq!(beside.unwrap(), first);
+                assert_eq!(reasons, 0);
+                // the plain square is proved valid here: the host is not asked
+                assert_eq!(asked, !proved, "n = {n}, proved = {proved}");
+            }
         }
     }
 
     #[test]
     fn errors_keep_the_order_of_a_check_made_first() {
         for n in [10, 2_000] {
-            let wkb = square(n);
+            let wkb = repeated(n);
             // an invalid verdict: the host's reason, asked once
             let (r, reasons) = within(&wkb, 0.5, false);
             assert!(
@@ -188,7 +225,7 @@ mod tests {
 
     #[test]
     fn ct_encode_is_checked_the_same_way() {
-        let wkb = square(2_000);
+        let wkb = repeated(2_000);
         let opts = super::super::Options {
             min_radius: 5.0,
             overlap: 0.4,

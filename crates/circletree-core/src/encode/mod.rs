@@ -161,7 +161,14 @@ pub fn encode_checked(
     invalid_reason: Option<&str>,
     interrupt: &mut dyn FnMut(),
 ) -> Result<(CircleTree, Report)> {
-    encode_verdict(wkb, srid, opts, Verdict::Known(invalid_reason), interrupt)
+    encode_verdict(
+        wkb,
+        srid,
+        opts,
+        Verdict::Known(invalid_reason),
+        None,
+        interrupt,
+    )
 }
 
 /// [`encode_checked`] with the input's validity asked of the host while the encoder runs
@@ -173,20 +180,22 @@ pub fn encode_host_checked(
     check: HostCheck<impl FnOnce() -> bool, impl FnOnce() -> String>,
     interrupt: &mut dyn FnMut(),
 ) -> Result<(CircleTree, Report)> {
-    beside(wkb, check, interrupt, |verdict, i| {
-        encode_verdict(wkb, srid, opts, verdict, i)
+    beside(wkb, check, interrupt, |verdict, read, i| {
+        encode_verdict(wkb, srid, opts, verdict, read, i)
     })
 }
 
+/// `read`: the input, when the caller has read it already.
 fn encode_verdict(
     wkb: &[u8],
     srid: i32,
     opts: &Options,
     verdict: Verdict<'_>,
+    read: Option<crate::wkb::Input>,
     interrupt: &mut dyn FnMut(),
 ) -> Result<(CircleTree, Report)> {
     let max_error = opts.check()?;
-    let prep = prepare(wkb, verdict)?;
+    let prep = prepare(wkb, verdict, read)?;
     let plan = Plan {
         opts: *opts,
         circles: true,
@@ -232,6 +241,7 @@ pub fn encode_within_stored(
         srid,
         max_error,
         Verdict::Known(invalid_reason),
+        None,
         interrupt,
     )
 }
@@ -245,8 +255,8 @@ pub fn encode_within_host_checked(
     check: HostCheck<impl FnOnce() -> bool, impl FnOnce() -> String>,
     interrupt: &mut dyn FnMut(),
 ) -> Result<(CircleTree, Vec<u8>, Report)> {
-    beside(wkb, check, interrupt, |verdict, i| {
-        within_verdict(wkb, srid, max_error, verdict, i)
+    beside(wkb, check, interrupt, |verdict, read, i| {
+        within_verdict(wkb, srid, max_error, verdict, read, i)
     })
 }
 
@@ -255,6 +265,7 @@ fn within_verdict(
     srid: i32,
     max_error: f64,
     verdict: Verdict<'_>,
+    read: Option<crate::wkb::Input>,
     interrupt: &mut dyn FnMut(),
 ) -> Result<(CircleTree, Vec<u8>, Report)> {
     positive("max_error", max_error)?;
@@ -268,7 +279,7 @@ fn within_verdict(
         max_error: Some(max_error),
     };
     let max_error = checked.check()?;
-    let prep = prepare(wkb, verdict)?;
+    let prep = prepare(wkb, verdict, read)?;
     // the same parameter ranges as `encode` at this bound (its grid must hold the coordinates)
     first_grid(&prep, max_error, 2.0)?;
     // Every plan's start is priced on its grid, and the closed loop runs on the cheapest first.
@@ -490,8 +501,11 @@ struct Prepared {
     dropped_zm: bool,
 }
 
-fn prepare(wkb: &[u8], verdict: Verdict<'_>) -> Result<Prepared> {
-    let input = crate::wkb::read(wkb)?;
+fn prepare(wkb: &[u8], verdict: Verdict<'_>, read: Option<crate::wkb::Input>) -> Result<Prepared> {
+    let input = match read {
+        Some(input) => input,
+        None => crate::wkb::read(wkb)?,
+    };
     match verdict {
         Verdict::Known(Some(reason)) => return Err(Error::InvalidPolygon(reason.to_string())),
         Verdict::Known(None) => {}
