@@ -53,12 +53,14 @@ pub(super) fn beside<T: Send>(
     interrupt: &mut dyn FnMut(),
     encode: impl FnOnce(Verdict<'_>, Option<crate::wkb::Input>, &mut dyn FnMut()) -> Result<T> + Send,
 ) -> Result<T> {
-    // (an input that cannot be read is left to the encoder, which says why in its own order)
-    if let Ok(input) = crate::wkb::read(wkb) {
-        if input.as_given && crate::proof::proves_valid(&input.shape, interrupt) {
+    // (an input that cannot be read is left to the encoder, which reads it again and says why in
+    // its own order; one that can is handed to the encoder either way, not read twice)
+    let given = match crate::wkb::read(wkb) {
+        Ok(input) if input.as_given && crate::proof::proves_valid(&input.shape, interrupt) => {
             return encode(Verdict::Known(None), Some(input), interrupt);
         }
-    }
+        other => other.ok(),
+    };
     let read = AtomicBool::new(false);
     let invalid = AtomicBool::new(false);
     let (reason, encoded) = parallel::join(
@@ -80,7 +82,7 @@ pub(super) fn beside<T: Send>(
                 i();
             };
             let run = catch_unwind(AssertUnwindSafe(|| {
-                encode(Verdict::Pending(&read), None, &mut stop_if_invalid)
+                encode(Verdict::Pending(&read), given, &mut stop_if_invalid)
             }));
             match run {
                 Ok(result) => Some(result),
