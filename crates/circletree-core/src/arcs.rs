@@ -27,6 +27,9 @@ pub struct ArcRing<'a> {
     pub dirty: Option<&'a [bool]>,
 }
 
+/// A piece's ring and position in it.
+type Key = (usize, usize);
+
 #[derive(Clone, Copy)]
 struct Piece {
     ring: usize,
@@ -254,62 +257,90 @@ pub fn problems(
         }
         pieces.push(v);
     }
-    let has_arc = pieces
+    // Only pairs with an arc are this check's (two lines are the stroke check's), so the index
+    // holds the arcs alone: a value of points and a few circles has few of them, and each line
+    // asks a nearly empty grid instead of one of every piece.
+    let arcs: Vec<(Bbox, (usize, usize))> = pieces
         .iter()
         .flatten()
-        .any(|p| matches!(p.seg, Seg::Arc { .. }));
-    if !has_arc {
+        .filter(|p| matches!(p.seg, Seg::Arc { .. }))
+        .map(|p| (p.bbox, (p.ring, p.pos)))
+        .collect();
+    if arcs.is_empty() {
         return vec![];
     }
     interrupt();
-    let tree = BoxIndex::new(
-        pieces
-            .iter()
-            .flatten()
-            .map(|p| (p.bbox, (p.ring, p.pos)))
-            .collect(),
+    let extent = arcs.iter().fold(
+        [
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        ],
+        |e, (b, _)| {
+            [
+                e[0].min(b[0]),
+                e[1].min(b[1]),
+                e[2].max(b[2]),
+                e[3].max(b[3]),
+            ]
+        },
     );
+    let tree = BoxIndex::new(arcs);
     let dirty = |p: &Piece| {
         rings[p.ring]
             .dirty
             .is_none_or(|d| d.get(p.span).copied().unwrap_or(true))
     };
-    let mut bad = Vec::new();
+    // Each pair of pieces meeting, one of them an arc and one of them changed, is tested once,
+    // from the changed one (the first of the two when both changed), and the findings are listed
+    // in the order of the piece each was tested from.
+    // (the key of the piece tested from, then each piece's ring and span)
+    let mut found: Vec<(Key, [(usize, usize); 2])> = Vec::new();
     for (count, p) in pieces.iter().flatten().enumerate() {
         if count % 4096 == 0 {
             interrupt();
         }
-        if !dirty(p) {
+        let b = &p.bbox;
+        if b[0] > extent[2] || extent[0] > b[2] || b[1] > extent[3] || extent[1] > b[3] {
             continue;
         }
-        let p_line = matches!(p.seg, Seg::Line(..));
-        tree.for_each_meeting(&p.bbox, |(k2, pos2)| {
+        let p_arc = matches!(p.seg, Seg::Arc { .. });
+        let p_dirty = dirty(p);
+        tree.for_each_meeting(b, |(k2, pos2)| {
             let q = &pieces[k2][pos2];
-            if (p_line && matches!(q.seg, Seg::Line(..)))
-                || (k2, pos2) == (p.ring, p.pos)
-                || (dirty(q) && (k2, pos2) < (p.ring, p.pos))
-            {
-                // two lines: the stroke check's (`meet` says nothing of them)
+            let (pk, qk) = ((p.ring, p.pos), (k2, pos2));
+            // two arcs: the pair once, from the first
+            if (p_arc && qk <= pk) || !(p_dirty || dirty(q)) {
                 return;
             }
+            let (x, y) = if p_dirty && (!dirty(q) || pk < qk) {
+                (p, q)
+            } else {
+                (q, p)
+            };
             let (mut joints, mut nj) = ([[0.0; 2]; 2], 0);
-            if k2 == p.ring {
-                let n = pieces[k2].len();
-                if (p.pos + 1) % n == pos2 {
-                    joints[nj] = p.seg.end();
+            if x.ring == y.ring {
+                let n = pieces[x.ring].len();
+                if (x.pos + 1) % n == y.pos {
+                    joints[nj] = x.seg.end();
                     nj += 1;
                 }
-                if (pos2 + 1) % n == p.pos {
-                    joints[nj] = p.seg.start();
+                if (y.pos + 1) % n == x.pos {
+                    joints[nj] = x.seg.start();
                     nj += 1;
                 }
             }
-            if meet(&p.seg, &q.seg, &joints[..nj], eps) {
-                bad.push((p.ring, p.span));
-                bad.push((k2, q.span));
+            if meet(&x.seg, &y.seg, &joints[..nj], eps) {
+                found.push(((x.ring, x.pos), [(x.ring, x.span), (y.ring, y.span)]));
             }
         });
     }
+    found.sort_by_key(|f| f.0);
+    let mut bad: Vec<(usize, usize)> = found
+        .into_iter()
+        .flat_map(|(_, pair)| pair)
+        .collect();
     // A ring inside the sliver between an arc of another ring and that arc's chords.
     for (k, probe) in probes.iter().enumerate() {
         let b = [probe[0], probe[1], probe[0], probe[1]];
