@@ -337,10 +337,7 @@ pub fn problems(
         });
     }
     found.sort_by_key(|f| f.0);
-    let mut bad: Vec<(usize, usize)> = found
-        .into_iter()
-        .flat_map(|(_, pair)| pair)
-        .collect();
+    let mut bad: Vec<(usize, usize)> = found.into_iter().flat_map(|(_, pair)| pair).collect();
     // A ring inside the sliver between an arc of another ring and that arc's chords.
     for (k, probe) in probes.iter().enumerate() {
         let b = [probe[0], probe[1], probe[0], probe[1]];

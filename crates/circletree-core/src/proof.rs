@@ -366,10 +366,22 @@ pub fn proves_valid(shape: &Shape, interrupt: &mut dyn FnMut()) -> bool {
             owner.push((part, k == 0));
         }
     }
-    if rings.is_empty() {
+    proves_rings(&rings, &owner, interrupt)
+}
+
+/// [`proves_valid`] for rings given one by one: `owner[k]` is ring `k`'s part (numbered from
+/// 0, each part with exactly one shell) and whether it is that part's shell. The encoder proves
+/// its own rebuilt rings with it.
+pub fn proves_rings(rings: &[&[Pt]], owner: &[(usize, bool)], interrupt: &mut dyn FnMut()) -> bool {
+    let nparts = owner.iter().map(|o| o.0 + 1).max().unwrap_or(0);
+    let mut shells = vec![0usize; nparts];
+    for &(part, shell) in owner {
+        shells[part] += usize::from(shell);
+    }
+    if rings.is_empty() || rings.len() != owner.len() || shells.iter().any(|&s| s != 1) {
         return false;
     }
-    if !segments_ok(&rings, interrupt) {
+    if !segments_ok(rings, interrupt) {
         return false;
     }
     interrupt();
@@ -383,7 +395,7 @@ pub fn proves_valid(shape: &Shape, interrupt: &mut dyn FnMut()) -> bool {
             .map(|(i, b)| (b, i))
             .collect(),
     );
-    let mut shell_of = vec![0; shape.parts.len()];
+    let mut shell_of = vec![0; nparts];
     for (k, &(part, shell)) in owner.iter().enumerate() {
         if shell {
             shell_of[part] = k;
@@ -411,7 +423,7 @@ pub fn proves_valid(shape: &Shape, interrupt: &mut dyn FnMut()) -> bool {
         });
     }
     let queries: Vec<(usize, Pt)> = must.iter().map(|&(g, p, _)| (g, p)).collect();
-    match locate_many(&rings, &queries) {
+    match locate_many(rings, &queries) {
         Some(found) if found.iter().zip(&must).all(|(f, m)| *f == m.2) => {}
         _ => return false,
     }
@@ -420,7 +432,7 @@ pub fn proves_valid(shape: &Shape, interrupt: &mut dyn FnMut()) -> bool {
         .iter()
         .map(|&(k, g)| (g, rings[k][0]))
         .collect();
-    let Some(found) = locate_many(&rings, &queries) else {
+    let Some(found) = locate_many(rings, &queries) else {
         return false;
     };
     // the shells inside another part's shell, and the holes of that part whose box holds them
@@ -440,7 +452,7 @@ pub fn proves_valid(shape: &Shape, interrupt: &mut dyn FnMut()) -> bool {
         });
         asked.push(in_hole.len() - before);
     }
-    let Some(found) = locate_many(&rings, &in_hole) else {
+    let Some(found) = locate_many(rings, &in_hole) else {
         return false;
     };
     // each such shell inside (exactly) one of the holes asked about
@@ -572,6 +584,20 @@ mod tests {
         ]));
         // nothing
         assert!(!proved(vec![]));
+    }
+
+    #[test]
+    fn rings_one_by_one_need_one_shell_a_part() {
+        let (outer, inner) = (sq(0.0, 0.0, 10.0), sq(2.0, 2.0, 2.0));
+        let rings: Vec<&[Pt]> = vec![&outer, &inner];
+        assert!(proves_rings(&rings, &[(0, true), (0, false)], &mut || {}));
+        // the same rings as two parts' shells: one inside the other's shell, not in a hole
+        assert!(!proves_rings(&rings, &[(0, true), (1, true)], &mut || {}));
+        // a part with no shell, a part with two, an owner missing
+        assert!(!proves_rings(&rings, &[(0, false), (0, false)], &mut || {}));
+        assert!(!proves_rings(&rings, &[(0, true), (0, true)], &mut || {}));
+        assert!(!proves_rings(&rings, &[(0, true)], &mut || {}));
+        assert!(!proves_rings(&[], &[], &mut || {}));
     }
 
     #[test]
