@@ -317,7 +317,7 @@ fn within_verdict(
     // others; the choice below is then made as if one thing were done after the other, so the
     // value is the same (a run the order would not have needed is dropped).
     let worth_it =
-        prep.vertices >= parallel::MIN_VERTICES && specs.len() > 1 && parallel::threads() > 1;
+        prep.vertices >= PLANS_APART_VERTICES && specs.len() > 1 && parallel::threads() > 1;
     // The first plan, which most often wins, is priced by writing it (its bytes are then the
     // result's when its start needs no repair); the others by bounds on their size, written only
     // where the bounds leave the choice open.
@@ -409,6 +409,12 @@ fn within_verdict(
         (None, None) => Err(range_error(max_error)),
     }
 }
+
+/// Inputs of at least this many vertices have their plans priced on two threads. Lower than
+/// [`parallel::MIN_VERTICES`]: pricing a plan is a millisecond at this size against tens of
+/// microseconds to start a thread (the public set's `ct_encode_within(geom, 10)` in the core,
+/// best of five: 112 ms with 5,000, 101 ms with 2,000, 95 ms with 1,000 or 500).
+const PLANS_APART_VERTICES: u64 = 1_000;
 
 /// What a plan's start would store: its bytes, or bounds on their number
 /// ([`CircleTree::size_bounds`]).
