@@ -225,6 +225,48 @@ fn meet(x: &Seg, y: &Seg, joints: &[Pt], eps: f64) -> bool {
     }
 }
 
+/// The arcs' boxes, and the box of them all (most pieces are far from every arc).
+struct ArcIndex {
+    index: BoxIndex<Key>,
+    extent: Bbox,
+}
+
+impl ArcIndex {
+    /// An index of `arcs`; `None` when there are none.
+    fn new<'a>(arcs: impl Iterator<Item = &'a Piece>) -> Option<ArcIndex> {
+        let items: Vec<(Bbox, Key)> = arcs.map(|p| (p.bbox, (p.ring, p.pos))).collect();
+        if items.is_empty() {
+            return None;
+        }
+        let extent = items.iter().fold(
+            [
+                f64::INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::NEG_INFINITY,
+            ],
+            |e, (b, _)| {
+                [
+                    e[0].min(b[0]),
+                    e[1].min(b[1]),
+                    e[2].max(b[2]),
+                    e[3].max(b[3]),
+                ]
+            },
+        );
+        Some(ArcIndex {
+            index: BoxIndex::new(items),
+            extent,
+        })
+    }
+
+    /// Could box `b` meet an arc?
+    fn may_meet(&self, b: &Bbox) -> bool {
+        let e = &self.extent;
+        !(b[0] > e[2] || e[0] > b[2] || b[1] > e[3] || e[1] > b[3])
+    }
+}
+
 /// Problems: `(ring, span)` for every span whose true arcs meet another piece, or whose slivers
 /// hold another ring. `tol` is the stroke tolerance of the checked stroke (the grid step), `eps`
 /// the distance under which two pieces count as meeting. `probes[k]` is a point of ring `k`.
@@ -260,37 +302,22 @@ pub fn problems(
     // Only pairs with an arc are this check's (two lines are the stroke check's), so the index
     // holds the arcs alone: a value of points and a few circles has few of them, and each line
     // asks a nearly empty grid instead of one of every piece.
-    let arcs: Vec<(Bbox, (usize, usize))> = pieces
-        .iter()
-        .flatten()
-        .filter(|p| matches!(p.seg, Seg::Arc { .. }))
-        .map(|p| (p.bbox, (p.ring, p.pos)))
-        .collect();
-    if arcs.is_empty() {
-        return vec![];
-    }
-    interrupt();
-    let extent = arcs.iter().fold(
-        [
-            f64::INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::NEG_INFINITY,
-        ],
-        |e, (b, _)| {
-            [
-                e[0].min(b[0]),
-                e[1].min(b[1]),
-                e[2].max(b[2]),
-                e[3].max(b[3]),
-            ]
-        },
-    );
-    let tree = BoxIndex::new(arcs);
     let dirty = |p: &Piece| {
         rings[p.ring]
             .dirty
             .is_none_or(|d| d.get(p.span).copied().unwrap_or(true))
+    };
+    let is_arc = |p: &&Piece| matches!(p.seg, Seg::Arc { .. });
+    let Some(tree) = ArcIndex::new(pieces.iter().flatten().filter(is_arc)) else {
+        return vec![];
+    };
+    interrupt();
+    // A piece that did not change meets only the arcs that did (none after most rounds).
+    let all_changed = pieces.iter().flatten().filter(is_arc).all(|p| dirty(p));
+    let changed = if all_changed {
+        None
+    } else {
+        ArcIndex::new(pieces.iter().flatten().filter(is_arc).filter(|p| dirty(p)))
     };
     // Each pair of pieces meeting, one of them an arc and one of them changed, is tested once,
     // from the changed one (the first of the two when both changed), and the findings are listed
@@ -301,13 +328,18 @@ pub fn problems(
         if count % 4096 == 0 {
             interrupt();
         }
+        let p_dirty = dirty(p);
+        let index = match (&changed, p_dirty || all_changed) {
+            (_, true) => &tree,
+            (Some(c), false) => c,
+            (None, false) => continue,
+        };
         let b = &p.bbox;
-        if b[0] > extent[2] || extent[0] > b[2] || b[1] > extent[3] || extent[1] > b[3] {
+        if !index.may_meet(b) {
             continue;
         }
         let p_arc = matches!(p.seg, Seg::Arc { .. });
-        let p_dirty = dirty(p);
-        tree.for_each_meeting(b, |(k2, pos2)| {
+        index.index.for_each_meeting(b, |(k2, pos2)| {
             let q = &pieces[k2][pos2];
             let (pk, qk) = ((p.ring, p.pos), (k2, pos2));
             // two arcs: the pair once, from the first
@@ -341,7 +373,7 @@ pub fn problems(
     // A ring inside the sliver between an arc of another ring and that arc's chords.
     for (k, probe) in probes.iter().enumerate() {
         let b = [probe[0], probe[1], probe[0], probe[1]];
-        tree.for_each_meeting(&b, |(k2, pos2)| {
+        tree.index.for_each_meeting(&b, |(k2, pos2)| {
             if k2 == k {
                 return;
             }

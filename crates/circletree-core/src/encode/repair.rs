@@ -13,7 +13,7 @@ use crate::geometry::{dist2_to_segment, signed_area, Pt, Shape};
 use crate::grid::Grid;
 use crate::metrics::{segment_max, Capsules};
 use crate::parallel;
-use crate::reconstruct::{ring_spans, stroke_spans};
+use crate::reconstruct::{for_each_span, stroke_spans};
 use crate::validity::{point_in_ring, problems_where, RingRef, Touches};
 use rstar::primitives::Line;
 use rstar::RTree;
@@ -233,38 +233,48 @@ fn dirty_spans(entries: &[Entry]) -> Vec<bool> {
     dirty
 }
 
-/// Stroke spans and drop repeated points, as the decoder does, keeping each point's span.
-fn stroke_dedup(spans: &crate::reconstruct::Spans, tol: f64) -> (Vec<Pt>, Vec<u32>) {
-    let (mut pts, mut ids) = (Vec::new(), Vec::new());
-    stroke_spans(spans, tol, &mut pts, Some(&mut ids));
-    dedup(pts, ids)
+/// Stroke spans and drop repeated points, as the decoder does, keeping each point's span: into
+/// `pts` and `ids`, whose allocations are reused (a round rebuilds every changed ring, and a
+/// fresh vector of a large ring is page faults).
+fn stroke_dedup(
+    spans: &crate::reconstruct::Spans,
+    tol: f64,
+    pts: &mut Vec<Pt>,
+    ids: &mut Vec<u32>,
+) {
+    pts.clear();
+    ids.clear();
+    stroke_spans(spans, tol, pts, Some(ids));
+    dedup(pts, ids);
 }
 
 /// A ring of points stroked: between two zero-radius circles the rebuild is the segment joining
 /// their centres, so the stroke is the centres, span `i` starting at centre `i` (what
 /// [`stroke_dedup`] makes of their spans, without building them).
-fn points_dedup(circles: &[[f64; 3]]) -> (Vec<Pt>, Vec<u32>) {
-    dedup(
-        circles.iter().map(|c| [c[0], c[1]]).collect(),
-        (0..circles.len() as u32).collect(),
-    )
+fn points_dedup(circles: &[[f64; 3]], pts: &mut Vec<Pt>, ids: &mut Vec<u32>) {
+    pts.clear();
+    ids.clear();
+    pts.extend(circles.iter().map(|c| [c[0], c[1]]));
+    ids.extend(0..circles.len() as u32);
+    dedup(pts, ids);
 }
 
 /// Drop consecutive repeated points (and the closing repeats of the first), with their spans.
-fn dedup(pts: Vec<Pt>, ids: Vec<u32>) -> (Vec<Pt>, Vec<u32>) {
-    let mut rp: Vec<Pt> = Vec::with_capacity(pts.len());
-    let mut ri: Vec<u32> = Vec::with_capacity(pts.len());
-    for (p, id) in pts.into_iter().zip(ids) {
-        if rp.last() != Some(&p) {
-            rp.push(p);
-            ri.push(id);
+fn dedup(pts: &mut Vec<Pt>, ids: &mut Vec<u32>) {
+    let mut kept = 0;
+    for i in 0..pts.len() {
+        if kept == 0 || pts[kept - 1] != pts[i] {
+            pts[kept] = pts[i];
+            ids[kept] = ids[i];
+            kept += 1;
         }
     }
-    while rp.len() > 1 && rp.first() == rp.last() {
-        rp.pop();
-        ri.pop();
+    pts.truncate(kept);
+    ids.truncate(kept);
+    while pts.len() > 1 && pts.first() == pts.last() {
+        pts.pop();
+        ids.pop();
     }
-    (rp, ri)
 }
 
 pub(super) enum Outcome {
@@ -417,13 +427,14 @@ pub(super) fn verify_and_repair(
                 .iter()
                 .map(|c| [unq(c.x), unq(c.y), unq(c.r)])
                 .collect();
-            (st.spans, (st.recon, st.span_of)) = if arcs {
-                let spans = ring_spans(&fc);
-                let stroke = stroke_dedup(&spans, g);
-                (spans, stroke)
+            if arcs {
+                st.spans.clear();
+                for_each_span(&fc, |s| st.spans.push(s));
+                stroke_dedup(&st.spans, g, &mut st.recon, &mut st.span_of);
             } else {
-                (Vec::new(), points_dedup(&fc))
-            };
+                st.spans = Vec::new();
+                points_dedup(&fc, &mut st.recon, &mut st.span_of);
+            }
             // `span_of` ascends: where each span's segments start, in one pass
             let mut at = 0;
             st.starts = (0..=st.m())
