@@ -313,7 +313,7 @@ pub fn problems(
     };
     interrupt();
     // A piece that did not change meets only the arcs that did (none after most rounds).
-    let all_changed = pieces.iter().flatten().filter(is_arc).all(|p| dirty(p));
+    let all_changed = pieces.iter().flatten().filter(is_arc).all(&dirty);
     let changed = if all_changed {
         None
     } else {
