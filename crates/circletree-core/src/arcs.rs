@@ -30,15 +30,15 @@ pub struct ArcRing<'a> {
 /// A piece's ring and position in it.
 type Key = (usize, usize);
 
+/// One piece of a ring, read from its spans where it is looked at (a ring's pieces are only
+/// listed by where they are: copies of every piece of a large ring each round were megabytes).
 #[derive(Clone, Copy)]
-struct Piece {
+struct Piece<'a> {
     ring: usize,
     span: usize,
     /// Position in the ring's sequence of pieces (degenerate lines dropped).
     pos: usize,
-    seg: Seg,
-    /// The piece's box, padded by `eps` (computed once: it is both indexed and queried).
-    bbox: Bbox,
+    seg: &'a Seg,
 }
 
 fn arc_box(c: Pt, r: f64, a0: f64, sweep: f64, from: Pt, to: Pt) -> [f64; 4] {
@@ -232,9 +232,11 @@ struct ArcIndex {
 }
 
 impl ArcIndex {
-    /// An index of `arcs`; `None` when there are none.
-    fn new<'a>(arcs: impl Iterator<Item = &'a Piece>) -> Option<ArcIndex> {
-        let items: Vec<(Bbox, Key)> = arcs.map(|p| (p.bbox, (p.ring, p.pos))).collect();
+    /// An index of `arcs` (their boxes padded by `eps`); `None` when there are none.
+    fn new<'a>(arcs: impl Iterator<Item = Piece<'a>>, eps: f64) -> Option<ArcIndex> {
+        let items: Vec<(Bbox, Key)> = arcs
+            .map(|p| (piece_box(p.seg, eps), (p.ring, p.pos)))
+            .collect();
         if items.is_empty() {
             return None;
         }
@@ -277,28 +279,38 @@ pub fn problems(
     eps: f64,
     interrupt: &mut dyn FnMut(),
 ) -> Vec<(usize, usize)> {
-    let mut pieces: Vec<Vec<Piece>> = Vec::with_capacity(rings.len());
-    for (k, r) in rings.iter().enumerate() {
+    // each ring's pieces, as (span, index in the span)
+    let mut pieces: Vec<Vec<(u32, u8)>> = Vec::with_capacity(rings.len());
+    for r in rings {
         let mut v = Vec::new();
         for (s, span) in r.spans.iter().enumerate() {
-            for seg in span {
+            for (t, seg) in span.iter().enumerate() {
                 // Lines shorter than eps are joints, not pieces: their neighbours meet there.
                 if let Seg::Line(a, b) = seg {
                     if near(*a, *b, eps) {
                         continue;
                     }
                 }
-                v.push(Piece {
-                    ring: k,
-                    span: s,
-                    pos: v.len(),
-                    seg: *seg,
-                    bbox: piece_box(seg, eps),
-                });
+                v.push((s as u32, t as u8));
             }
         }
         pieces.push(v);
     }
+    let at = |ring: usize, pos: usize| {
+        let (s, t) = pieces[ring][pos];
+        Piece {
+            ring,
+            span: s as usize,
+            pos,
+            seg: &rings[ring].spans[s as usize][t as usize],
+        }
+    };
+    let all = || {
+        pieces
+            .iter()
+            .enumerate()
+            .flat_map(move |(k, v)| (0..v.len()).map(move |pos| at(k, pos)))
+    };
     // Only pairs with an arc are this check's (two lines are the stroke check's), so the index
     // holds the arcs alone: a value of points and a few circles has few of them, and each line
     // asks a nearly empty grid instead of one of every piece.
@@ -307,46 +319,46 @@ pub fn problems(
             .dirty
             .is_none_or(|d| d.get(p.span).copied().unwrap_or(true))
     };
-    let is_arc = |p: &&Piece| matches!(p.seg, Seg::Arc { .. });
-    let Some(tree) = ArcIndex::new(pieces.iter().flatten().filter(is_arc)) else {
+    let is_arc = |p: &Piece| matches!(p.seg, Seg::Arc { .. });
+    let Some(tree) = ArcIndex::new(all().filter(is_arc), eps) else {
         return vec![];
     };
     interrupt();
     // A piece that did not change meets only the arcs that did (none after most rounds).
-    let all_changed = pieces.iter().flatten().filter(is_arc).all(&dirty);
+    let all_changed = all().filter(is_arc).all(|p| dirty(&p));
     let changed = if all_changed {
         None
     } else {
-        ArcIndex::new(pieces.iter().flatten().filter(is_arc).filter(|p| dirty(p)))
+        ArcIndex::new(all().filter(is_arc).filter(|p| dirty(p)), eps)
     };
     // Each pair of pieces meeting, one of them an arc and one of them changed, is tested once,
     // from the changed one (the first of the two when both changed), and the findings are listed
     // in the order of the piece each was tested from.
     // (the key of the piece tested from, then each piece's ring and span)
     let mut found: Vec<(Key, [(usize, usize); 2])> = Vec::new();
-    for (count, p) in pieces.iter().flatten().enumerate() {
+    for (count, p) in all().enumerate() {
         if count % 4096 == 0 {
             interrupt();
         }
-        let p_dirty = dirty(p);
+        let p_dirty = dirty(&p);
         let index = match (&changed, p_dirty || all_changed) {
             (_, true) => &tree,
             (Some(c), false) => c,
             (None, false) => continue,
         };
-        let b = &p.bbox;
-        if !index.may_meet(b) {
+        let b = piece_box(p.seg, eps);
+        if !index.may_meet(&b) {
             continue;
         }
-        let p_arc = matches!(p.seg, Seg::Arc { .. });
-        index.index.for_each_meeting(b, |(k2, pos2)| {
-            let q = &pieces[k2][pos2];
+        let p_arc = is_arc(&p);
+        index.index.for_each_meeting(&b, |(k2, pos2)| {
+            let q = at(k2, pos2);
             let (pk, qk) = ((p.ring, p.pos), (k2, pos2));
             // two arcs: the pair once, from the first
-            if (p_arc && qk <= pk) || !(p_dirty || dirty(q)) {
+            if (p_arc && qk <= pk) || !(p_dirty || dirty(&q)) {
                 return;
             }
-            let (x, y) = if p_dirty && (!dirty(q) || pk < qk) {
+            let (x, y) = if p_dirty && (!dirty(&q) || pk < qk) {
                 (p, q)
             } else {
                 (q, p)
@@ -363,7 +375,7 @@ pub fn problems(
                     nj += 1;
                 }
             }
-            if meet(&x.seg, &y.seg, &joints[..nj], eps) {
+            if meet(x.seg, y.seg, &joints[..nj], eps) {
                 found.push(((x.ring, x.pos), [(x.ring, x.span), (y.ring, y.span)]));
             }
         });
@@ -377,13 +389,14 @@ pub fn problems(
             if k2 == k {
                 return;
             }
+            let q = at(k2, pos2);
             if let Seg::Arc {
                 c, r, a0, sweep, ..
-            } = pieces[k2][pos2].seg
+            } = *q.seg
             {
                 if in_sliver(*probe, c, r, a0, sweep, tol, eps) {
                     bad.push((k, usize::MAX));
-                    bad.push((k2, pieces[k2][pos2].span));
+                    bad.push((k2, q.span));
                 }
             }
         });
