@@ -341,40 +341,58 @@ const INTERRUPT_WORK: usize = 1 << 18;
 /// Steps 3-4: choose the runs that cover the ring, longest first, within the overlap allowance.
 pub fn select(n: usize, mut runs: Vec<Mapped>, overlap: f64) -> Vec<Mapped> {
     runs.sort_by(|a, b| b.len.cmp(&a.len).then(a.r.abs().total_cmp(&b.r.abs())));
-    let mut covered = vec![false; n];
+    // owner[e]: the kept run covering edge e (NONE: none yet)
+    const NONE: u32 = u32::MAX;
+    let mut owner = vec![NONE; n];
     let mut kept: Vec<Mapped> = Vec::new();
     // kept circles by their bounding boxes: two circles can only meet where their boxes do
     let mut tree: RTree<GeomWithData<Rectangle<[f64; 2]>, usize>> = RTree::new();
     for m in runs {
-        let new = (0..m.len).filter(|&k| !covered[(m.start + k) % n]).count();
+        let new = (0..m.len)
+            .filter(|&k| owner[(m.start + k) % n] == NONE)
+            .count();
         if new < 2 {
             continue;
         }
         let r = m.r.abs();
+        let clashes = |o: &Mapped| {
+            if o.c == m.c && o.r == m.r {
+                return false; // the same circle, another run of it
+            }
+            let ro = o.r.abs();
+            let d = dist(o.c, m.c);
+            let depth = r + ro - d;
+            if depth <= 0.0 {
+                return false;
+            }
+            if o.r.signum() != m.r.signum() || d + r.min(ro) <= r.max(ro) {
+                return true;
+            }
+            depth / (2.0 * r.min(ro)) > overlap
+        };
+        // The kept circles of the edges this run shares or touches clash most often: asked
+        // first, they spare most look-ups (a clash with any kept circle is a clash, whichever
+        // is found).
+        let mut last = NONE;
+        let near = (0..=m.len + 1).any(|k| {
+            let o = owner[(m.start + n - 1 + k) % n];
+            if o == NONE || o == last {
+                return false;
+            }
+            last = o;
+            clashes(&kept[o as usize])
+        });
         let bbox = Rectangle::from_corners([m.c[0] - r, m.c[1] - r], [m.c[0] + r, m.c[1] + r]);
-        let clash = tree
-            .locate_in_envelope_intersecting(&bbox.envelope())
-            .any(|g| {
-                let o = kept[g.data];
-                if o.c == m.c && o.r == m.r {
-                    return false; // the same circle, another run of it
-                }
-                let ro = o.r.abs();
-                let d = dist(o.c, m.c);
-                let depth = r + ro - d;
-                if depth <= 0.0 {
-                    return false;
-                }
-                if o.r.signum() != m.r.signum() || d + r.min(ro) <= r.max(ro) {
-                    return true;
-                }
-                depth / (2.0 * r.min(ro)) > overlap
-            });
-        if clash {
+        if near
+            || tree
+                .locate_in_envelope_intersecting(&bbox.envelope())
+                .any(|g| clashes(&kept[g.data]))
+        {
             continue;
         }
+        let id = u32::try_from(kept.len()).unwrap_or(NONE - 1);
         for k in 0..m.len {
-            covered[(m.start + k) % n] = true;
+            owner[(m.start + k) % n] = id;
         }
         tree.insert(GeomWithData::new(bbox, kept.len()));
         kept.push(m);
