@@ -98,9 +98,49 @@ pub fn candidates(ring: &[Pt], interrupt: &mut dyn FnMut()) -> Vec<Candidate> {
         }
     }
     interrupt();
-    // side[f]: Some(true) = polygon side (left of the ring)
-    let nf = cdt.all_faces().len();
-    let mut side: Vec<Option<bool>> = vec![None; nf];
+    // The faces' sides and their circumcircles need nothing of each other: on a large ring they
+    // are found side by side.
+    let (side, circles) = crate::parallel::join(
+        n as u64 >= crate::parallel::MIN_VERTICES,
+        interrupt,
+        |_| sides(&cdt, n),
+        |i| circumcircles(&cdt, i),
+    );
+    let mut found: Vec<Candidate> = Vec::with_capacity(circles.len());
+    for (f, c, r, verts) in circles {
+        if let Some(inside) = side[f] {
+            found.push(Candidate {
+                c: [c[0] + o[0], c[1] + o[1]],
+                r: if inside { r } else { -r },
+                verts,
+            });
+        }
+    }
+    // in order of their vertices: by the lowest (a counting sort), then the other two
+    let mut start = vec![0usize; n + 1];
+    for c in &found {
+        start[c.verts[0] + 1] += 1;
+    }
+    for v in 0..n {
+        start[v + 1] += start[v];
+    }
+    let mut out = found.clone();
+    let mut next = start.clone();
+    for c in found {
+        out[next[c.verts[0]]] = c;
+        next[c.verts[0]] += 1;
+    }
+    for v in 0..n {
+        out[start[v]..start[v + 1]].sort_unstable_by_key(|c| c.verts);
+    }
+    out
+}
+
+/// Each inner face's side of the ring (`Some(true)`: the polygon's, left of the ring), by face
+/// index: a face with a ring edge knows it from the edge's direction, the others inherit it by
+/// flood fill across unconstrained edges.
+fn sides(cdt: &ConstrainedDelaunayTriangulation<V>, n: usize) -> Vec<Option<bool>> {
+    let mut side: Vec<Option<bool>> = vec![None; cdt.all_faces().len()];
     let mut queue: Vec<FixedFaceHandle<spade::handles::InnerTag>> = Vec::new();
     for face in cdt.inner_faces() {
         for e in face.adjacent_edges() {
@@ -129,27 +169,33 @@ pub fn candidates(ring: &[Pt], interrupt: &mut dyn FnMut()) -> Vec<Candidate> {
             }
         }
     }
+    side
+}
+
+/// Each inner face's circumcircle, where it has one: face index, centre (local coordinates),
+/// radius and vertices from the lowest.
+#[allow(clippy::type_complexity)]
+fn circumcircles(
+    cdt: &ConstrainedDelaunayTriangulation<V>,
+    interrupt: &mut dyn FnMut(),
+) -> Vec<(usize, Pt, f64, [usize; 3])> {
     let mut out = Vec::with_capacity(cdt.num_inner_faces());
     for (k, face) in cdt.inner_faces().enumerate() {
         if k % 4096 == 0 {
             interrupt();
         }
-        let Some(inside) = side[face.fix().index()] else {
-            continue;
-        };
         let (c, r2) = face.circumcircle();
         if !(r2.is_finite() && c.x.is_finite() && c.y.is_finite()) || r2 <= 0.0 {
             continue;
         }
-        let r = r2.sqrt();
         let vs = face.vertices();
-        out.push(Candidate {
-            c: [c.x + o[0], c.y + o[1]],
-            r: if inside { r } else { -r },
-            verts: first_lowest([vs[0].data().i, vs[1].data().i, vs[2].data().i]),
-        });
+        out.push((
+            face.fix().index(),
+            [c.x, c.y],
+            r2.sqrt(),
+            first_lowest([vs[0].data().i, vs[1].data().i, vs[2].data().i]),
+        ));
     }
-    out.sort_unstable_by_key(|c| c.verts);
     out
 }
 
