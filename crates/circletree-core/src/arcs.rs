@@ -13,7 +13,7 @@
 //! its whole ring (the last test). Ends of pieces closer than `eps` count as meeting, so floating
 //! point rounding can only make the check stricter, never let a touch through.
 
-use crate::box_grid::{Bbox, BoxIndex};
+use crate::box_grid::{union, Bbox, BoxIndex, EMPTY};
 use crate::geometry::{dist2_to_segment, Pt};
 use crate::reconstruct::{arc_segments, Seg, Spans};
 use std::f64::consts::TAU;
@@ -87,6 +87,28 @@ fn piece_box(seg: &Seg, pad: f64) -> Bbox {
         } => arc_box(c, r, a0, sweep, from, to),
     };
     [b[0] - pad, b[1] - pad, b[2] + pad, b[3] + pad]
+}
+
+/// Pieces in a block of [`problems`]' first look.
+const BLOCK: usize = 32;
+
+/// A box holding the piece, cheaper than [`piece_box`]: an arc's whole circle (and its ends,
+/// which rounding may put a hair outside it).
+fn rough_box(seg: &Seg) -> Bbox {
+    match *seg {
+        Seg::Line(a, b) => [
+            a[0].min(b[0]),
+            a[1].min(b[1]),
+            a[0].max(b[0]),
+            a[1].max(b[1]),
+        ],
+        Seg::Arc { c, r, from, to, .. } => [
+            (c[0] - r).min(from[0]).min(to[0]),
+            (c[1] - r).min(from[1]).min(to[1]),
+            (c[0] + r).max(from[0]).max(to[0]),
+            (c[1] + r).max(from[1]).max(to[1]),
+        ],
+    }
 }
 
 /// Is angle `t` on the arc starting at `a0` sweeping `sweep` (signed), to `tol` radians?
@@ -240,22 +262,7 @@ impl ArcIndex {
         if items.is_empty() {
             return None;
         }
-        let extent = items.iter().fold(
-            [
-                f64::INFINITY,
-                f64::INFINITY,
-                f64::NEG_INFINITY,
-                f64::NEG_INFINITY,
-            ],
-            |e, (b, _)| {
-                [
-                    e[0].min(b[0]),
-                    e[1].min(b[1]),
-                    e[2].max(b[2]),
-                    e[3].max(b[3]),
-                ]
-            },
-        );
+        let extent = items.iter().fold(EMPTY, |e, (b, _)| union(e, *b));
         Some(ArcIndex {
             index: BoxIndex::new(items),
             extent,
@@ -336,11 +343,47 @@ pub fn problems(
     // in the order of the piece each was tested from.
     // (the key of the piece tested from, then each piece's ring and span)
     let mut found: Vec<(Key, [(usize, usize); 2])> = Vec::new();
+    // After a first round few pieces change: the unchanged ones are asked of the changed arcs a
+    // block at a time first, and a block whose box (each piece bounded cheaply, an arc by its
+    // whole circle) meets none of them is passed over.
+    let block_may_meet = |k: usize, from: usize| -> bool {
+        let Some(c) = &changed else {
+            return false;
+        };
+        let mut b = [
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        ];
+        for pos in from..(from + BLOCK).min(pieces[k].len()) {
+            let r = rough_box(at(k, pos).seg);
+            b = [
+                b[0].min(r[0]),
+                b[1].min(r[1]),
+                b[2].max(r[2]),
+                b[3].max(r[3]),
+            ];
+        }
+        let b = [b[0] - eps, b[1] - eps, b[2] + eps, b[3] + eps];
+        let mut any = false;
+        if c.may_meet(&b) {
+            c.index.for_each_meeting(&b, |_| any = true);
+        }
+        any
+    };
+    let mut clean_may_meet = true;
     for (count, p) in all().enumerate() {
         if count % 4096 == 0 {
             interrupt();
         }
+        if p.pos % BLOCK == 0 {
+            clean_may_meet = all_changed || block_may_meet(p.ring, p.pos);
+        }
         let p_dirty = dirty(&p);
+        if !(p_dirty || clean_may_meet) {
+            continue;
+        }
         let index = match (&changed, p_dirty || all_changed) {
             (_, true) => &tree,
             (Some(c), false) => c,

@@ -15,6 +15,24 @@ use rstar::{RTree, AABB};
 /// A box: `[xmin, ymin, xmax, ymax]`.
 pub type Bbox = [f64; 4];
 
+/// The box of nothing: [`union`] with it gives the other box.
+pub const EMPTY: Bbox = [
+    f64::INFINITY,
+    f64::INFINITY,
+    f64::NEG_INFINITY,
+    f64::NEG_INFINITY,
+];
+
+/// The smallest box holding both.
+pub fn union(a: Bbox, b: Bbox) -> Bbox {
+    [
+        a[0].min(b[0]),
+        a[1].min(b[1]),
+        a[2].max(b[2]),
+        a[3].max(b[3]),
+    ]
+}
+
 /// Boxes stored by the cells they cover.
 pub struct BoxGrid {
     x0: f64,
@@ -40,20 +58,7 @@ impl BoxGrid {
         if n == 0 || n >= u32::MAX as usize / 2 {
             return None;
         }
-        let mut ext = [
-            f64::INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::NEG_INFINITY,
-        ];
-        for b in &boxes {
-            ext = [
-                ext[0].min(b[0]),
-                ext[1].min(b[1]),
-                ext[2].max(b[2]),
-                ext[3].max(b[3]),
-            ];
-        }
+        let ext = boxes.iter().fold(EMPTY, |e, b| union(e, *b));
         let (w, h) = (ext[2] - ext[0], ext[3] - ext[1]);
         if !(w.is_finite() && h.is_finite()) {
             return None;
