@@ -71,12 +71,7 @@ fn arc_box(c: Pt, r: f64, a0: f64, sweep: f64, from: Pt, to: Pt) -> [f64; 4] {
 
 fn piece_box(seg: &Seg, pad: f64) -> Bbox {
     let b = match *seg {
-        Seg::Line(a, b) => [
-            a[0].min(b[0]),
-            a[1].min(b[1]),
-            a[0].max(b[0]),
-            a[1].max(b[1]),
-        ],
+        Seg::Line(..) => rough_box(seg),
         Seg::Arc {
             c,
             r,
@@ -86,6 +81,11 @@ fn piece_box(seg: &Seg, pad: f64) -> Bbox {
             to,
         } => arc_box(c, r, a0, sweep, from, to),
     };
+    padded(b, pad)
+}
+
+/// `b` grown by `pad` on every side.
+fn padded(b: Bbox, pad: f64) -> Bbox {
     [b[0] - pad, b[1] - pad, b[2] + pad, b[3] + pad]
 }
 
@@ -318,15 +318,15 @@ pub fn problems(
             .enumerate()
             .flat_map(move |(k, v)| (0..v.len()).map(move |pos| at(k, pos)))
     };
-    // Only pairs with an arc are this check's (two lines are the stroke check's), so the index
-    // holds the arcs alone: a value of points and a few circles has few of them, and each line
-    // asks a nearly empty grid instead of one of every piece.
     let dirty = |p: &Piece| {
         rings[p.ring]
             .dirty
             .is_none_or(|d| d.get(p.span).copied().unwrap_or(true))
     };
     let is_arc = |p: &Piece| matches!(p.seg, Seg::Arc { .. });
+    // Only pairs with an arc are this check's (two lines are the stroke check's), so the index
+    // holds the arcs alone: a value of points and a few circles has few of them, and each line
+    // asks a nearly empty grid instead of one of every piece.
     let Some(tree) = ArcIndex::new(all().filter(is_arc), eps) else {
         return vec![];
     };
@@ -350,22 +350,9 @@ pub fn problems(
         let Some(c) = &changed else {
             return false;
         };
-        let mut b = [
-            f64::INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::NEG_INFINITY,
-        ];
-        for pos in from..(from + BLOCK).min(pieces[k].len()) {
-            let r = rough_box(at(k, pos).seg);
-            b = [
-                b[0].min(r[0]),
-                b[1].min(r[1]),
-                b[2].max(r[2]),
-                b[3].max(r[3]),
-            ];
-        }
-        let b = [b[0] - eps, b[1] - eps, b[2] + eps, b[3] + eps];
+        let b = (from..(from + BLOCK).min(pieces[k].len()))
+            .fold(EMPTY, |b, pos| union(b, rough_box(at(k, pos).seg)));
+        let b = padded(b, eps);
         let mut any = false;
         if c.may_meet(&b) {
             c.index.for_each_meeting(&b, |_| any = true);
