@@ -56,7 +56,12 @@ fn main() {
         tt += dt;
         match res {
             Ok((ct, rep)) => {
-                let b = ct.to_bytes().len();
+                let bytes = ct.to_bytes();
+                let b = bytes.len();
+                // FNV-1a of the stored bytes: two runs' values compared exactly, not by size
+                let hash = bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &x| {
+                    (h ^ u64::from(x)).wrapping_mul(0x0100_0000_01b3)
+                });
                 let mut old = ct.clone();
                 old.version = 1;
                 let old_bytes = old.to_bytes();
@@ -71,7 +76,7 @@ fn main() {
                     all.iter().filter(|c| c.r > 0).count(),
                     all.iter().filter(|c| c.r < 0).count(),
                 );
-                println!("{:28} n={:6} circles={:6} int={:5} ext={:5} zero={:6} repaired={:6} filt={:5} dp={:5} rounds={:3} grid={} bytes={:7} v1={:7} wkb={:8} ratio={:.3} {:.3}s",
+                println!("{:28} n={:6} circles={:6} int={:5} ext={:5} zero={:6} repaired={:6} filt={:5} dp={:5} rounds={:3} grid={} bytes={:7} v1={:7} wkb={:8} ratio={:.3} fnv={hash:016x} {:.3}s",
                     s.name, s.npoints, all.len(), i, e, all.len() - i - e, ct.repaired, rep.filtered_circles, rep.dp_points, rep.rounds, ct.grid, b, b1, s.wkb.len(), b as f64 / s.wkb.len() as f64, dt);
             }
             Err(e) => println!("{:28} ERROR {e}", s.name),

@@ -19,6 +19,7 @@ use crate::geometry::{dist, Pt};
 use crate::medial::Candidate;
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{RTree, RTreeObject};
+use std::hash::BuildHasher;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// A kept circle and the run of ring edges it stands for: edges `start .. start + len` (modulo n).
@@ -150,6 +151,86 @@ fn sweep(a: Pt, b: Pt, c: Pt) -> f64 {
     cross.atan2(dot).abs()
 }
 
+/// The candidates at least `min_radius` in radius, the first of each cell of `cell` in centre and
+/// radius, in their order.
+fn distinct<'a>(
+    cands: &'a [Candidate],
+    min_radius: f64,
+    cell: f64,
+    interrupt: &mut dyn FnMut(),
+) -> Vec<&'a Candidate> {
+    let key = |cand: &Candidate| {
+        (
+            (cand.c[0] / cell).round() as i64,
+            (cand.c[1] / cell).round() as i64,
+            (cand.r / cell).round() as i64,
+        )
+    };
+    let hash = |cand: &Candidate| {
+        let mut z = rustc_hash::FxBuildHasher.hash_one(key(cand));
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    };
+    // One table of every candidate is larger than the caches on a large ring (a miss for each
+    // candidate): the candidates are spread over lists by their hash first, each list with a
+    // table of its own that fits, and on a large ring the lists of either half of the hashes on
+    // a thread of their own. A cell's candidates share a hash, so they meet in one list, in order.
+    let lists = (cands.len() / DISTINCT_LIST).next_power_of_two().min(64);
+    let firsts = |half: Option<u64>| -> Vec<usize> {
+        // (hash, index): a list is read in order, and a candidate itself only where two hashes
+        // are equal (on a large ring, a list's candidates are pages apart)
+        let mut spread: Vec<Vec<(u64, usize)>> = vec![Vec::new(); lists];
+        for (i, cand) in cands.iter().enumerate() {
+            if cand.r.abs() < min_radius {
+                continue;
+            }
+            let h = hash(cand);
+            if half.is_some_and(|half| h >> 63 != half) {
+                continue;
+            }
+            spread[(h >> 40) as usize % lists].push((h, i));
+        }
+        let mut out = Vec::new();
+        let mut table: hashbrown::HashTable<usize> = hashbrown::HashTable::new();
+        for list in spread {
+            table.clear();
+            table.reserve(list.len(), |&p| list[p].0);
+            for (p, &(h, i)) in list.iter().enumerate() {
+                let same = |&q: &usize| list[q].0 == h && key(&cands[list[q].1]) == key(&cands[i]);
+                if let hashbrown::hash_table::Entry::Vacant(v) =
+                    table.entry(h, same, |&q| list[q].0)
+                {
+                    v.insert(p);
+                    out.push(i);
+                }
+            }
+        }
+        out
+    };
+    let firsts =
+        if cands.len() as u64 >= crate::parallel::MIN_VERTICES && crate::parallel::threads() > 1 {
+            let (mut a, b) =
+                crate::parallel::join(true, interrupt, |_| firsts(Some(0)), |_| firsts(Some(1)));
+            a.extend(b);
+            a
+        } else {
+            firsts(None)
+        };
+    let mut keep = vec![false; cands.len()];
+    for i in firsts {
+        keep[i] = true;
+    }
+    cands
+        .iter()
+        .zip(keep)
+        .filter_map(|(c, k)| k.then_some(c))
+        .collect()
+}
+
+/// About this many candidates to a list in [`distinct`].
+const DISTINCT_LIST: usize = 1 << 15;
+
 /// Steps 1-2: runs of at least two edges for each candidate, radius averaged over its run.
 pub fn map_runs(
     ring: &[Pt],
@@ -162,18 +243,7 @@ pub fn map_runs(
     // Nearly identical circles (cocircular vertices give many) would map the same long runs again
     // and again: keep one per cell of a quarter of the tolerance in centre and radius.
     let cell = (tol / 4.0).max(f64::MIN_POSITIVE);
-    let mut seen_circles = rustc_hash::FxHashSet::default();
-    let cands: Vec<&Candidate> = cands
-        .iter()
-        .filter(|cand| {
-            cand.r.abs() >= min_radius
-                && seen_circles.insert((
-                    (cand.c[0] / cell).round() as i64,
-                    (cand.c[1] / cell).round() as i64,
-                    (cand.r / cell).round() as i64,
-                ))
-        })
-        .collect();
+    let cands = distinct(cands, min_radius, cell, interrupt);
     // Where the vertices of a finely stroked arc are all on one circle, their circumcentres scatter
     // by more than that cell (a circumcircle of three close points is ill-conditioned) and each maps
     // a run of most of the ring: quadratic (hours for ST_Buffer(point, 1e6, 250000) at a tolerance
@@ -348,9 +418,9 @@ pub fn select(n: usize, mut runs: Vec<Mapped>, overlap: f64) -> Vec<Mapped> {
     // kept circles by their bounding boxes: two circles can only meet where their boxes do
     let mut tree: RTree<GeomWithData<Rectangle<[f64; 2]>, usize>> = RTree::new();
     for m in runs {
-        let new = (0..m.len)
-            .filter(|&k| owner[(m.start + k) % n] == NONE)
-            .count();
+        // (the edges in order from a start, without a division for each)
+        let from = |start: usize| owner[start..].iter().chain(&owner[..start]);
+        let new = from(m.start).take(m.len).filter(|&&o| o == NONE).count();
         if new < 2 {
             continue;
         }
@@ -374,14 +444,16 @@ pub fn select(n: usize, mut runs: Vec<Mapped>, overlap: f64) -> Vec<Mapped> {
         // first, they spare most look-ups (a clash with any kept circle is a clash, whichever
         // is found).
         let mut last = NONE;
-        let near = (0..=m.len + 1).any(|k| {
-            let o = owner[(m.start + n - 1 + k) % n];
-            if o == NONE || o == last {
-                return false;
-            }
-            last = o;
-            clashes(&kept[o as usize])
-        });
+        let near = from((m.start + n - 1) % n)
+            .cycle()
+            .take(m.len + 2)
+            .any(|&o| {
+                if o == NONE || o == last {
+                    return false;
+                }
+                last = o;
+                clashes(&kept[o as usize])
+            });
         let bbox = Rectangle::from_corners([m.c[0] - r, m.c[1] - r], [m.c[0] + r, m.c[1] + r]);
         if near
             || tree
@@ -391,9 +463,9 @@ pub fn select(n: usize, mut runs: Vec<Mapped>, overlap: f64) -> Vec<Mapped> {
             continue;
         }
         let id = u32::try_from(kept.len()).unwrap_or(NONE - 1);
-        for k in 0..m.len {
-            owner[(m.start + k) % n] = id;
-        }
+        let wrapped = (m.start + m.len).saturating_sub(n);
+        owner[m.start..m.start + m.len - wrapped].fill(id);
+        owner[..wrapped].fill(id);
         tree.insert(GeomWithData::new(bbox, kept.len()));
         kept.push(m);
     }
@@ -405,6 +477,51 @@ mod tests {
     use super::*;
     use crate::medial::candidates;
     use proptest::prelude::*;
+
+    /// [`distinct`] keeps the first candidate of each cell, in order, the same as one plain set
+    /// would: here on enough candidates to be spread over many lists and two threads, most of
+    /// them sharing a cell with others far before or after them in the list.
+    #[test]
+    fn distinct_keeps_the_first_of_each_cell_in_order() {
+        let mut z = 7u64;
+        let mut next = || {
+            z = z
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (z >> 33) as f64 / (1u64 << 31) as f64
+        };
+        let cands: Vec<Candidate> = (0..300_000)
+            .map(|i| Candidate {
+                c: [next() * 300.0 - 150.0, next() * 300.0 - 150.0],
+                r: (next() * 40.0 - 20.0).round() * if i % 7 == 0 { 0.01 } else { 1.0 },
+                verts: [i, i + 1, i + 2],
+            })
+            .collect();
+        let (min_radius, cell) = (0.5, 2.5);
+        let mut seen = std::collections::HashSet::new();
+        let expected: Vec<[usize; 3]> = cands
+            .iter()
+            .filter(|c| {
+                c.r.abs() >= min_radius
+                    && seen.insert((
+                        (c.c[0] / cell).round() as i64,
+                        (c.c[1] / cell).round() as i64,
+                        (c.r / cell).round() as i64,
+                    ))
+            })
+            .map(|c| c.verts)
+            .collect();
+        let got: Vec<[usize; 3]> = distinct(&cands, min_radius, cell, &mut || {})
+            .iter()
+            .map(|c| c.verts)
+            .collect();
+        assert!(
+            expected.len() > 10_000 && expected.len() < 200_000,
+            "{}",
+            expected.len()
+        );
+        assert_eq!(got, expected);
+    }
 
     proptest! {
         /// The walk sums exact turns only once the bound could reach the limit: the bound must
