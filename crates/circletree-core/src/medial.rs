@@ -106,29 +106,33 @@ pub fn candidates(ring: &[Pt], interrupt: &mut dyn FnMut()) -> Vec<Candidate> {
         |_| sides(&cdt, n),
         |i| circumcircles(&cdt, i),
     );
-    let mut found: Vec<Candidate> = Vec::with_capacity(circles.len());
-    for (f, c, r, verts) in circles {
-        if let Some(inside) = side[f] {
-            found.push(Candidate {
-                c: [c[0] + o[0], c[1] + o[1]],
-                r: if inside { r } else { -r },
-                verts,
-            });
-        }
-    }
-    // in order of their vertices: by the lowest (a counting sort), then the other two
+    // The faces with a side, in order of their vertices: by the lowest (a counting sort, placed
+    // straight from the faces), then the other two.
     let mut start = vec![0usize; n + 1];
-    for c in &found {
-        start[c.verts[0] + 1] += 1;
+    for &(f, _, _, verts) in &circles {
+        if side[f].is_some() {
+            start[verts[0] + 1] += 1;
+        }
     }
     for v in 0..n {
         start[v + 1] += start[v];
     }
-    let mut out = found.clone();
+    let unset = Candidate {
+        c: [0.0; 2],
+        r: 0.0,
+        verts: [0; 3],
+    };
+    let mut out = vec![unset; start[n]];
     let mut next = start.clone();
-    for c in found {
-        out[next[c.verts[0]]] = c;
-        next[c.verts[0]] += 1;
+    for (f, c, r, verts) in circles {
+        if let Some(inside) = side[f] {
+            out[next[verts[0]]] = Candidate {
+                c: [c[0] + o[0], c[1] + o[1]],
+                r: if inside { r } else { -r },
+                verts,
+            };
+            next[verts[0]] += 1;
+        }
     }
     for v in 0..n {
         out[start[v]..start[v + 1]].sort_unstable_by_key(|c| c.verts);
