@@ -191,7 +191,9 @@ fn circle_circle(c1: Pt, r1: f64, c2: Pt, r2: f64, eps: f64) -> Option<Few> {
 }
 
 fn near(p: Pt, q: Pt, eps: f64) -> bool {
-    (p[0] - q[0]).hypot(p[1] - q[1]) <= eps
+    let d = [p[0] - q[0], p[1] - q[1]];
+    // (a distance is at least either difference: most pairs are decided without `hypot`)
+    d[0].abs() <= eps && d[1].abs() <= eps && d[0].hypot(d[1]) <= eps
 }
 
 /// Do two pieces meet anywhere but at the joints `joints` (points where they are allowed to meet)?

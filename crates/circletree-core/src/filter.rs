@@ -36,9 +36,10 @@ pub struct Mapped {
 }
 
 /// What the walks from one seed around one centre have measured: each edge's cross and dot
-/// products seen from the centre and the distances of its middle and of its far end (walking
-/// away from the seed) from the centre. The walk with the averaged radius reads them again
-/// instead of measuring them again (the same numbers, so the same run), and so does the average.
+/// products seen from the centre and, once asked, the distances of its far end (walking away
+/// from the seed) and of its middle from the centre. The walk with the averaged radius reads them
+/// again instead of measuring them again (the same numbers, so the same run), and so does the
+/// average.
 #[derive(Default)]
 struct Walked {
     c: Pt,
@@ -50,12 +51,13 @@ struct Walked {
     back: Vec<Measured>,
 }
 
+/// One edge seen from a centre; a distance not measured yet is NaN.
 #[derive(Clone, Copy)]
 struct Measured {
     cross: f64,
     dot: f64,
-    mid: f64,
     end: f64,
+    mid: f64,
 }
 
 impl Walked {
@@ -67,40 +69,57 @@ impl Walked {
         self.back.clear();
     }
 
-    fn measure(&self, a: Pt, b: Pt, end: Pt) -> Measured {
-        let (cross, dot) = cross_dot(a, b, self.c);
-        Measured {
-            cross,
-            dot,
-            mid: dist([(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0], self.c),
-            end: dist(end, self.c),
-        }
-    }
-
-    fn fwd(&mut self, ring: &[Pt], k: usize) -> Measured {
+    /// Does edge `k` of the walk forward (`j` backward) hug the circle of radius `r` turning
+    /// `sign`'s way: does it turn that way around the centre, and are its far end and its
+    /// middle within `tol` of the circle? Its cross and dot products, when it does.
+    fn hugs(
+        &mut self,
+        ring: &[Pt],
+        forward: bool,
+        k: usize,
+        (r, sign, tol): (f64, f64, f64),
+    ) -> Option<(f64, f64)> {
         let n = ring.len();
-        while self.fwd.len() <= k {
-            let i = (self.seed + self.fwd.len()) % n;
-            let (a, b) = (ring[i], ring[(i + 1) % n]);
-            let m = self.measure(a, b, b);
-            self.fwd.push(m);
+        let (seed, c) = (self.seed, self.c);
+        // the edge's ends (`k < n`, so one subtraction wraps each)
+        let wrap = |x: usize| if x >= n { x - n } else { x };
+        let i = wrap(if forward { seed + k } else { seed + n - 1 - k });
+        let (a, b) = (ring[i], ring[wrap(i + 1)]);
+        let list = if forward {
+            &mut self.fwd
+        } else {
+            &mut self.back
+        };
+        // (a walk asks its edges in order, so an edge not measured yet is the next one)
+        if list.len() <= k {
+            debug_assert_eq!(list.len(), k);
+            let (cross, dot) = cross_dot(a, b, c);
+            list.push(Measured {
+                cross,
+                dot,
+                end: f64::NAN,
+                mid: f64::NAN,
+            });
         }
-        self.fwd[k]
+        let m = &mut list[k];
+        let on = |d: f64| (d - r).abs() <= tol;
+        if !(m.cross * sign > 0.0) {
+            return None;
+        }
+        if m.end.is_nan() {
+            m.end = dist(if forward { b } else { a }, c);
+        }
+        if !on(m.end) {
+            return None;
+        }
+        if m.mid.is_nan() {
+            m.mid = dist([(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0], c);
+        }
+        on(m.mid).then_some((m.cross, m.dot))
     }
 
-    fn back(&mut self, ring: &[Pt], j: usize) -> Measured {
-        let n = ring.len();
-        while self.back.len() <= j {
-            let i = (self.seed + n - 1 - self.back.len() % n) % n;
-            let (a, b) = (ring[i], ring[(i + 1) % n]);
-            let m = self.measure(a, b, a);
-            self.back.push(m);
-        }
-        self.back[j]
-    }
-
-    /// The distance from the centre of the vertex `o` after the seed (before it, negative),
-    /// measured by a walk already.
+    /// The distance from the centre of the vertex `o` after the seed (before it, negative), on
+    /// a run walked already.
     fn vertex(&self, o: isize) -> f64 {
         match o {
             0 => self.seed_dist,
@@ -127,28 +146,28 @@ impl Walked {
 /// within `tol`: its first vertex, its length and how many of its edges are before the seed.
 fn run_at(ring: &[Pt], w: &mut Walked, rho: f64, tol: f64) -> (usize, usize, usize) {
     let n = ring.len();
-    let r = rho.abs();
-    let sign = rho.signum();
-    let on = |d: f64| (d - r).abs() <= tol;
-    // Edge hugs the circle: it turns the circle's way, and its far end and its middle are on the
-    // circle (the other end is the run's last vertex, already tested: the seed, before the walk).
-    let hugs = |m: Measured| m.cross * sign > 0.0 && on(m.end) && on(m.mid);
-    if !on(w.seed_dist) {
+    let circle = (rho.abs(), rho.signum(), tol);
+    // (an edge's other end is the run's last vertex, already tested: the seed, before the walk)
+    if (w.seed_dist - rho.abs()).abs() > tol {
         return (w.seed, 0, 0);
     }
     let mut turn = Turn::default();
     let mut len = 0;
     while len < n {
-        let m = w.fwd(ring, len);
-        if !hugs(m) || turn.reaches_limit(m, || w.exact(len + 1, 0)) {
+        let Some(m) = w.hugs(ring, true, len, circle) else {
+            break;
+        };
+        if turn.reaches_limit(m, || w.exact(len + 1, 0)) {
             break;
         }
         len += 1;
     }
     let fwd = len;
     while len < n {
-        let m = w.back(ring, len - fwd);
-        if !hugs(m) || turn.reaches_limit(m, || w.exact(fwd, len - fwd + 1)) {
+        let Some(m) = w.hugs(ring, false, len - fwd, circle) else {
+            break;
+        };
+        if turn.reaches_limit(m, || w.exact(fwd, len - fwd + 1)) {
             break;
         }
         len += 1;
@@ -170,16 +189,17 @@ struct Turn {
 }
 
 impl Turn {
-    /// Walk edge `m`: has the run now turned [`TURN_LIMIT`]? `so_far` gives the exact turn of
-    /// every edge walked, this one included, in the walk's order.
-    fn reaches_limit(&mut self, m: Measured, so_far: impl FnOnce() -> f64) -> bool {
+    /// Walk an edge (its cross and dot products seen from the centre): has the run now turned
+    /// [`TURN_LIMIT`]? `so_far` gives the exact turn of every edge walked, this one included, in
+    /// the walk's order.
+    fn reaches_limit(&mut self, (cross, dot): (f64, f64), so_far: impl FnOnce() -> f64) -> bool {
         let turned = match self.exact.as_mut() {
             Some(t) => {
-                *t += sweep(m.cross, m.dot);
+                *t += sweep(cross, dot);
                 *t
             }
             None => {
-                self.bound += sweep_bound(m.cross, m.dot);
+                self.bound += sweep_bound(cross, dot);
                 if self.bound < TURN_LIMIT {
                     return false;
                 }
