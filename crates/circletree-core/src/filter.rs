@@ -103,7 +103,8 @@ impl Walked {
         }
         let m = &mut list[k];
         let on = |d: f64| (d - r).abs() <= tol;
-        if !(m.cross * sign > 0.0) {
+        let turns = m.cross * sign > 0.0;
+        if !turns {
             return None;
         }
         if m.end.is_nan() {
