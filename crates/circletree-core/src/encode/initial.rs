@@ -43,13 +43,20 @@ pub(super) fn initial_entries(
     report: &mut Report,
 ) -> Vec<Entry> {
     let n = ring.len();
-    let kept = if circles {
+    let (kept, dp_points) = if circles {
         let cands = medial::candidates(ring, interrupt);
         let runs = filter::map_runs(ring, &cands, opts.min_radius, max_error / 2.0, interrupt);
         interrupt();
-        filter::select(n, runs, opts.overlap)
+        // Douglas-Peucker's points need nothing of the circles: on a large ring they are found
+        // beside the selection.
+        crate::parallel::join(
+            n as u64 >= crate::parallel::MIN_VERTICES,
+            interrupt,
+            |_| filter::select(n, runs, opts.overlap),
+            |_| opts.dp_tolerance.map(|dp| douglas_peucker::keep(ring, dp)),
+        )
     } else {
-        Vec::new()
+        (Vec::new(), None)
     };
     report.filtered_circles += kept.len();
     let mut entries: Vec<Entry> = kept
@@ -74,7 +81,7 @@ pub(super) fn initial_entries(
                 }
             }
         }
-    } else if let Some(dp) = opts.dp_tolerance {
+    } else if let Some(dp_points) = dp_points {
         // covered[v]: vertex v lies on a kept run (its ends included: a point on a circle has a
         // degenerate tangent to it)
         let mut covered = vec![false; n];
@@ -83,7 +90,7 @@ pub(super) fn initial_entries(
                 covered[(m.start + k) % n] = true;
             }
         }
-        for v in douglas_peucker::keep(ring, dp) {
+        for v in dp_points {
             if !covered[v] {
                 entries.push(Entry::point(ring, v, false));
                 report.dp_points += 1;
