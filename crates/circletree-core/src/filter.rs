@@ -69,8 +69,8 @@ impl Walked {
         self.back.clear();
     }
 
-    /// Does edge `k` of the walk forward (`j` backward) hug the circle of radius `r` turning
-    /// `sign`'s way: does it turn that way around the centre, and are its far end and its
+    /// Does edge `k` of the walk (forward or backward from the seed) hug the circle of radius
+    /// `r` turning `sign`'s way: does it turn that way around the centre, and are its far end and its
     /// middle within `tol` of the circle? Its cross and dot products, when it does.
     fn hugs(
         &mut self,
@@ -247,6 +247,8 @@ fn distinct<'a>(
             (cand.r / cell).round() as i64,
         )
     };
+    // Fx's hash mixed once more (splitmix64's finalizer), so that its top bit (which thread)
+    // and its middle bits (which list) are as even as its low ones (the table's)
     let hash = |cand: &Candidate| {
         let mut z = rustc_hash::FxBuildHasher.hash_one(key(cand));
         z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
