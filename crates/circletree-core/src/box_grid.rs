@@ -211,13 +211,7 @@ mod tests {
     /// Every pair found by the grid is found by brute force and the other way round, once each.
     #[test]
     fn the_grid_finds_what_brute_force_finds() {
-        let mut seed = 7u64;
-        let mut rnd = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rnd = crate::test_uniform(7);
         // a wavy ring of short segments, plus a few long ones across it
         let mut pts: Vec<[f64; 2]> = (0..2000)
             .map(|i| {

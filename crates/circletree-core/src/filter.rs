@@ -589,13 +589,7 @@ mod tests {
     /// them sharing a cell with others far before or after them in the list.
     #[test]
     fn distinct_keeps_the_first_of_each_cell_in_order() {
-        let mut z = 7u64;
-        let mut next = || {
-            z = z
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (z >> 33) as f64 / (1u64 << 31) as f64
-        };
+        let mut next = crate::test_uniform(7);
         let cands: Vec<Candidate> = (0..300_000)
             .map(|i| Candidate {
                 c: [next() * 300.0 - 150.0, next() * 300.0 - 150.0],

@@ -31,4 +31,16 @@ pub mod touch;
 pub mod validity;
 pub mod wkb;
 
+/// Tests' reproducible numbers in `[0, 1)` from a seed (Knuth's MMIX linear congruential
+/// generator, its top 53 bits).
+#[cfg(test)]
+pub(crate) fn test_uniform(mut seed: u64) -> impl FnMut() -> f64 {
+    move || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 pub use error::{Error, Result};

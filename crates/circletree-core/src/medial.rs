@@ -269,13 +269,8 @@ mod tests {
     fn the_same_triangles_as_spades_bulk_load_in_a_fixed_order() {
         let tau = std::f64::consts::TAU;
         let n = 3000;
-        let mut seed = 7u64;
-        let mut noise = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut uniform = crate::test_uniform(7);
+        let mut noise = || uniform() - 0.5;
         let at = |i: usize| i as f64 / n as f64 * tau;
         // an ellipse and a parabola arc (convex: quadratic in plain ring order), a star of
         // spikes (quadratic in strided rounds), a wavy coastline, all in UTM-sized coordinates
