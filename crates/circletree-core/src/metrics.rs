@@ -73,10 +73,14 @@ pub fn segment_max_in(to: &[(Pt, Pt)], a: Pt, b: Pt, floor: f64, eps: f64) -> f6
 
 /// Segments prepared for [`Capsules::covers`]: each with its unit direction and length, and the
 /// box of the points within `r` of it.
+#[derive(Default)]
 pub struct Capsules {
     segs: Vec<CapSeg>,
     r: f64,
     cover: Vec<(f64, f64)>,
+    /// The segment whose capsule alone held the last segment asked about, wholly: asked first
+    /// (consecutive questions are usually about neighbours).
+    hint: usize,
 }
 
 struct CapSeg {
@@ -90,35 +94,38 @@ struct CapSeg {
 impl Capsules {
     /// The capsules of radius `r` around the segments `to`.
     pub fn new(to: &[(Pt, Pt)], r: f64) -> Capsules {
-        let segs = to
-            .iter()
-            .map(|&(c, e)| {
-                let v = [e[0] - c[0], e[1] - c[1]];
-                let len = (v[0] * v[0] + v[1] * v[1]).sqrt();
-                let u = if len > 0.0 {
-                    [v[0] / len, v[1] / len]
-                } else {
-                    [0.0, 0.0]
-                };
-                CapSeg {
-                    c,
-                    e,
-                    u,
-                    len,
-                    bbox: [
-                        c[0].min(e[0]) - r,
-                        c[1].min(e[1]) - r,
-                        c[0].max(e[0]) + r,
-                        c[1].max(e[1]) + r,
-                    ],
-                }
-            })
-            .collect();
-        Capsules {
-            segs,
-            r,
-            cover: Vec::with_capacity(to.len()),
-        }
+        let mut caps = Capsules::default();
+        caps.refill(to, r);
+        caps
+    }
+
+    /// Make these the capsules of radius `r` around `to`, reusing what is allocated.
+    pub fn refill(&mut self, to: &[(Pt, Pt)], r: f64) {
+        self.segs.clear();
+        self.segs.extend(to.iter().map(|&(c, e)| {
+            let v = [e[0] - c[0], e[1] - c[1]];
+            let len = (v[0] * v[0] + v[1] * v[1]).sqrt();
+            let u = if len > 0.0 {
+                [v[0] / len, v[1] / len]
+            } else {
+                [0.0, 0.0]
+            };
+            CapSeg {
+                c,
+                e,
+                u,
+                len,
+                bbox: [
+                    c[0].min(e[0]) - r,
+                    c[1].min(e[1]) - r,
+                    c[0].max(e[0]) + r,
+                    c[1].max(e[1]) + r,
+                ],
+            }
+        }));
+        self.r = r;
+        self.cover.clear();
+        self.hint = 0;
     }
 
     /// Is every point of segment `a-b` within `r` of the segments? Exact up to rounding, with no
@@ -142,12 +149,26 @@ impl Capsules {
             a[0].max(b[0]),
             a[1].max(b[1]),
         ];
+        let meets = |s: &CapSeg| {
+            !(s.bbox[0] > bb[2] || s.bbox[2] < bb[0] || s.bbox[1] > bb[3] || s.bbox[3] < bb[1])
+        };
+        // One capsule holding all of `a-b` is an interval [0, 1], which the sweep below always
+        // accepts whatever the others: the same answer without the sweep.
+        if let Some(s) = self.segs.get(self.hint) {
+            if meets(s) && s.interval(a, d, dd, r, r2) == Some((0.0, 1.0)) {
+                return true;
+            }
+        }
         self.cover.clear();
-        for s in &self.segs {
-            if s.bbox[0] > bb[2] || s.bbox[2] < bb[0] || s.bbox[1] > bb[3] || s.bbox[3] < bb[1] {
+        for (i, s) in self.segs.iter().enumerate() {
+            if !meets(s) {
                 continue;
             }
             if let Some(iv) = s.interval(a, d, dd, r, r2) {
+                if iv == (0.0, 1.0) {
+                    self.hint = i;
+                    return true;
+                }
                 self.cover.push(iv);
             }
         }

@@ -56,13 +56,14 @@ impl RingState {
     /// Spans whose original edges and strokes a span is measured against: itself and [`WINDOW`]
     /// neighbours either side (every span when there are no more). Measuring against a subset can
     /// only overestimate the distance, so a span that passes is within the bound globally too.
-    fn window(&self, s: usize) -> Vec<usize> {
+    fn window(&self, s: usize) -> impl Iterator<Item = usize> {
         let m = self.m();
-        if m <= 2 * WINDOW + 1 {
-            (0..m).collect()
+        let (first, count) = if m <= 2 * WINDOW + 1 {
+            (0, m)
         } else {
-            (0..=2 * WINDOW).map(|d| (s + m + d - WINDOW) % m).collect()
-        }
+            ((s + m - WINDOW) % m, 2 * WINDOW + 1)
+        };
+        (0..count).map(move |d| (first + d) % m)
     }
 
     /// Original vertex indices whose edge (to the next vertex) span `s` stands for.
@@ -90,20 +91,24 @@ impl RingState {
         (self.recon[i], self.recon[(i + 1) % n])
     }
 
-    fn window_orig(&self, s: usize) -> Vec<(Pt, Pt)> {
-        self.window(s)
-            .into_iter()
-            .flat_map(|t| self.orig_edges(t))
-            .map(|v| self.orig_seg(v))
-            .collect()
+    /// The original edges of span `s`'s window, into `out`.
+    fn window_orig(&self, s: usize, out: &mut Vec<(Pt, Pt)>) {
+        out.clear();
+        out.extend(
+            self.window(s)
+                .flat_map(|t| self.orig_edges(t))
+                .map(|v| self.orig_seg(v)),
+        );
     }
 
-    fn window_recon(&self, s: usize) -> Vec<(Pt, Pt)> {
-        self.window(s)
-            .into_iter()
-            .flat_map(|t| self.starts[t]..self.starts[t + 1])
-            .map(|i| self.recon_seg(i))
-            .collect()
+    /// The stroke of span `s`'s window, into `out`.
+    fn window_recon(&self, s: usize, out: &mut Vec<(Pt, Pt)>) {
+        out.clear();
+        out.extend(
+            self.window(s)
+                .flat_map(|t| self.starts[t]..self.starts[t + 1])
+                .map(|i| self.recon_seg(i)),
+        );
     }
 
     /// Are span `s` and every span of its window straight (between two zero-radius circles)?
@@ -112,7 +117,6 @@ impl RingState {
         m > 1
             && self
                 .window(s)
-                .into_iter()
                 .all(|t| self.entries[t].r == 0.0 && self.entries[(t + 1) % m].r == 0.0)
     }
 
@@ -176,19 +180,27 @@ impl RingState {
 
     /// Does every point of span `s`, and of the original edges it stands for, lie within
     /// `target` of the other boundary (measured on the windows)?
-    fn span_fits(&self, s: usize, target: f64, eps: f64) -> bool {
+    fn span_fits(&self, s: usize, target: f64, eps: f64, scratch: &mut Scratch) -> bool {
         if self.straight_span_fits(s, target) {
             return true;
         }
-        let recon = self.window_recon(s);
+        self.window_recon(s, &mut scratch.segs);
         let own_orig = self.orig_edges(s).map(|v| self.orig_seg(v));
-        if !all_within(&recon, own_orig, target, eps) {
+        if !all_within(&scratch.segs, own_orig, target, eps, &mut scratch.caps) {
             return false;
         }
-        let orig = self.window_orig(s);
+        self.window_orig(s, &mut scratch.segs);
         let own_recon = (self.starts[s]..self.starts[s + 1]).map(|i| self.recon_seg(i));
-        all_within(&orig, own_recon, target, eps)
+        all_within(&scratch.segs, own_recon, target, eps, &mut scratch.caps)
     }
+}
+
+/// What [`RingState::span_fits`] measures with, kept from span to span (an allocation or two
+/// for each of a million spans was a third of the distance checks).
+#[derive(Default)]
+struct Scratch {
+    segs: Vec<(Pt, Pt)>,
+    caps: Capsules,
 }
 
 /// Squared distance between two points.
@@ -202,9 +214,10 @@ fn all_within(
     mut from: impl Iterator<Item = (Pt, Pt)>,
     target: f64,
     eps: f64,
+    caps: &mut Capsules,
 ) -> bool {
     if to.len() <= BRUTE_FORCE_LIMIT {
-        let mut caps = Capsules::new(to, target + eps);
+        caps.refill(to, target + eps);
         from.all(|(a, b)| caps.covers(a, b))
     } else {
         let tree: RTree<Line<[f64; 2]>> =
@@ -507,6 +520,7 @@ fn distance_failures(
         // the stroke is the geometry itself and the whole bound is available (arcs keep a
         // grid step of it for the decoder's stroke).
         let eps = g * 1e-3;
+        let mut scratch = Scratch::default();
         let straight_target = max_error - 3.0 * eps;
         for s in 0..st.m() {
             let t = if !ctx.circles && st.straight_window(s) {
@@ -514,7 +528,7 @@ fn distance_failures(
             } else {
                 target
             };
-            if st.dirty[s] && !st.span_fits(s, t, eps) {
+            if st.dirty[s] && !st.span_fits(s, t, eps, &mut scratch) {
                 failing[k].push(s);
             }
         }
@@ -666,7 +680,8 @@ fn repair(st: &mut RingState, spans: &[usize], target: f64, hurry: bool) -> bool
             continue;
         }
         // the interior vertex farthest from the stroke, if it is far; else the middle one
-        let recon = st.window_recon(i);
+        let mut recon = Vec::new();
+        st.window_recon(i, &mut recon);
         let far = |v: usize| {
             recon
                 .iter()
