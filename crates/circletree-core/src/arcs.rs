@@ -256,11 +256,8 @@ struct ArcIndex {
 }
 
 impl ArcIndex {
-    /// An index of `arcs` (their boxes padded by `eps`); `None` when there are none.
-    fn new<'a>(arcs: impl Iterator<Item = Piece<'a>>, eps: f64) -> Option<ArcIndex> {
-        let items: Vec<(Bbox, Key)> = arcs
-            .map(|p| (piece_box(p.seg, eps), (p.ring, p.pos)))
-            .collect();
+    /// An index of `arcs` (their boxes padded by `eps`, and keys); `None` when there are none.
+    fn new(items: Vec<(Bbox, Key)>) -> Option<ArcIndex> {
         if items.is_empty() {
             return None;
         }
@@ -288,11 +285,20 @@ pub fn problems(
     eps: f64,
     interrupt: &mut dyn FnMut(),
 ) -> Vec<(usize, usize)> {
-    // each ring's pieces, as (span, index in the span)
+    // One pass over every span (a span is 168 bytes: on a large ring each pass is megabytes
+    // read, and five passes were most of this check's time after the first round): each ring's
+    // pieces as (span, index in the span), each block of pieces' rough box and whether it holds
+    // a changed piece, and the arcs with their boxes.
     let mut pieces: Vec<Vec<(u32, u8)>> = Vec::with_capacity(rings.len());
-    for r in rings {
+    let mut blocks: Vec<Vec<(Bbox, bool)>> = Vec::with_capacity(rings.len());
+    let mut arcs: Vec<(Bbox, Key)> = Vec::new();
+    let mut changed_arcs: Vec<(Bbox, Key)> = Vec::new();
+    for (k, r) in rings.iter().enumerate() {
         let mut v = Vec::new();
+        let mut b = Vec::new();
+        let mut block = (EMPTY, false);
         for (s, span) in r.spans.iter().enumerate() {
+            let span_dirty = r.dirty.is_none_or(|d| d.get(s).copied().unwrap_or(true));
             for (t, seg) in span.iter().enumerate() {
                 // Lines shorter than eps are joints, not pieces: their neighbours meet there.
                 if let Seg::Line(a, b) = seg {
@@ -300,10 +306,26 @@ pub fn problems(
                         continue;
                     }
                 }
+                let pos = v.len();
                 v.push((s as u32, t as u8));
+                block = (union(block.0, rough_box(seg)), block.1 || span_dirty);
+                if pos % BLOCK == BLOCK - 1 {
+                    b.push(std::mem::replace(&mut block, (EMPTY, false)));
+                }
+                if matches!(seg, Seg::Arc { .. }) {
+                    let item = (piece_box(seg, eps), (k, pos));
+                    if span_dirty {
+                        changed_arcs.push(item);
+                    }
+                    arcs.push(item);
+                }
             }
         }
+        if v.len() % BLOCK != 0 {
+            b.push(block);
+        }
         pieces.push(v);
+        blocks.push(b);
     }
     let at = |ring: usize, pos: usize| {
         let (s, t) = pieces[ring][pos];
@@ -314,31 +336,25 @@ pub fn problems(
             seg: &rings[ring].spans[s as usize][t as usize],
         }
     };
-    let all = || {
-        pieces
-            .iter()
-            .enumerate()
-            .flat_map(move |(k, v)| (0..v.len()).map(move |pos| at(k, pos)))
-    };
     let dirty = |p: &Piece| {
         rings[p.ring]
             .dirty
             .is_none_or(|d| d.get(p.span).copied().unwrap_or(true))
     };
     let is_arc = |p: &Piece| matches!(p.seg, Seg::Arc { .. });
+    // A piece that did not change meets only the arcs that did (none after most rounds).
+    let all_changed = changed_arcs.len() == arcs.len();
     // Only pairs with an arc are this check's (two lines are the stroke check's), so the index
     // holds the arcs alone: a value of points and a few circles has few of them, and each line
     // asks a nearly empty grid instead of one of every piece.
-    let Some(tree) = ArcIndex::new(all().filter(is_arc), eps) else {
+    let Some(tree) = ArcIndex::new(arcs) else {
         return vec![];
     };
     interrupt();
-    // A piece that did not change meets only the arcs that did (none after most rounds).
-    let all_changed = all().filter(is_arc).all(|p| dirty(&p));
     let changed = if all_changed {
         None
     } else {
-        ArcIndex::new(all().filter(is_arc).filter(|p| dirty(p)), eps)
+        ArcIndex::new(changed_arcs)
     };
     // Each pair of pieces meeting, one of them an arc and one of them changed, is tested once,
     // from the changed one (the first of the two when both changed), and the findings are listed
@@ -347,70 +363,78 @@ pub fn problems(
     let mut found: Vec<(Key, [(usize, usize); 2])> = Vec::new();
     // After a first round few pieces change: the unchanged ones are asked of the changed arcs a
     // block at a time first, and a block whose box (each piece bounded cheaply, an arc by its
-    // whole circle) meets none of them is passed over.
-    let block_may_meet = |k: usize, from: usize| -> bool {
+    // whole circle) meets none of them is passed over, and so is a block of unchanged pieces
+    // then, without reading them.
+    let block_may_meet = |k: usize, block: usize| -> bool {
         let Some(c) = &changed else {
             return false;
         };
-        let b = (from..(from + BLOCK).min(pieces[k].len()))
-            .fold(EMPTY, |b, pos| union(b, rough_box(at(k, pos).seg)));
-        let b = padded(b, eps);
+        let b = padded(blocks[k][block].0, eps);
         let mut any = false;
         if c.may_meet(&b) {
             c.index.for_each_meeting(&b, |_| any = true);
         }
         any
     };
-    let mut clean_may_meet = true;
-    for (count, p) in all().enumerate() {
-        if count % 4096 == 0 {
+    let mut count = 0usize;
+    let all = (0..pieces.len()).flat_map(|k| (0..blocks[k].len()).map(move |block| (k, block)));
+    for (k, block) in all {
+        if block.is_multiple_of(1024) {
             interrupt();
         }
-        if p.pos % BLOCK == 0 {
-            clean_may_meet = all_changed || block_may_meet(p.ring, p.pos);
-        }
-        let p_dirty = dirty(&p);
-        if !(p_dirty || clean_may_meet) {
+        let clean_may_meet = all_changed || block_may_meet(k, block);
+        if !(clean_may_meet || blocks[k][block].1) {
             continue;
         }
-        let index = match (&changed, p_dirty || all_changed) {
-            (_, true) => &tree,
-            (Some(c), false) => c,
-            (None, false) => continue,
-        };
-        let b = piece_box(p.seg, eps);
-        if !index.may_meet(&b) {
-            continue;
-        }
-        let p_arc = is_arc(&p);
-        index.index.for_each_meeting(&b, |(k2, pos2)| {
-            let q = at(k2, pos2);
-            let (pk, qk) = ((p.ring, p.pos), (k2, pos2));
-            // two arcs: the pair once, from the first
-            if (p_arc && qk <= pk) || !(p_dirty || dirty(&q)) {
-                return;
+        for pos in block * BLOCK..((block + 1) * BLOCK).min(pieces[k].len()) {
+            count += 1;
+            if count.is_multiple_of(4096) {
+                interrupt();
             }
-            let (x, y) = if p_dirty && (!dirty(&q) || pk < qk) {
-                (p, q)
-            } else {
-                (q, p)
+            let p = at(k, pos);
+            let p_dirty = dirty(&p);
+            if !(p_dirty || clean_may_meet) {
+                continue;
+            }
+            let index = match (&changed, p_dirty || all_changed) {
+                (_, true) => &tree,
+                (Some(c), false) => c,
+                (None, false) => continue,
             };
-            let (mut joints, mut nj) = ([[0.0; 2]; 2], 0);
-            if x.ring == y.ring {
-                let n = pieces[x.ring].len();
-                if (x.pos + 1) % n == y.pos {
-                    joints[nj] = x.seg.end();
-                    nj += 1;
-                }
-                if (y.pos + 1) % n == x.pos {
-                    joints[nj] = x.seg.start();
-                    nj += 1;
-                }
+            let b = piece_box(p.seg, eps);
+            if !index.may_meet(&b) {
+                continue;
             }
-            if meet(x.seg, y.seg, &joints[..nj], eps) {
-                found.push(((x.ring, x.pos), [(x.ring, x.span), (y.ring, y.span)]));
-            }
-        });
+            let p_arc = is_arc(&p);
+            index.index.for_each_meeting(&b, |(k2, pos2)| {
+                let q = at(k2, pos2);
+                let (pk, qk) = ((p.ring, p.pos), (k2, pos2));
+                // two arcs: the pair once, from the first
+                if (p_arc && qk <= pk) || !(p_dirty || dirty(&q)) {
+                    return;
+                }
+                let (x, y) = if p_dirty && (!dirty(&q) || pk < qk) {
+                    (p, q)
+                } else {
+                    (q, p)
+                };
+                let (mut joints, mut nj) = ([[0.0; 2]; 2], 0);
+                if x.ring == y.ring {
+                    let n = pieces[x.ring].len();
+                    if (x.pos + 1) % n == y.pos {
+                        joints[nj] = x.seg.end();
+                        nj += 1;
+                    }
+                    if (y.pos + 1) % n == x.pos {
+                        joints[nj] = x.seg.start();
+                        nj += 1;
+                    }
+                }
+                if meet(x.seg, y.seg, &joints[..nj], eps) {
+                    found.push(((x.ring, x.pos), [(x.ring, x.span), (y.ring, y.span)]));
+                }
+            });
+        }
     }
     found.sort_by_key(|f| f.0);
     let mut bad: Vec<(usize, usize)> = found.into_iter().flat_map(|(_, pair)| pair).collect();
