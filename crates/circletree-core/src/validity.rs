@@ -10,8 +10,6 @@
 use crate::box_grid::{Bbox, BoxIndex};
 use crate::geometry::{signed_area, Pt};
 use robust::{orient2d, Coord};
-use rstar::primitives::{GeomWithData, Rectangle};
-use rstar::RTreeObject;
 
 /// Points where two different rings may touch, by the bits of their coordinates.
 pub type Touches = rustc_hash::FxHashSet<[u64; 2]>;
@@ -89,16 +87,13 @@ impl NearHot {
     /// Most cells marked for one envelope; a larger envelope lets everything pass.
     const MAX_CELLS: i64 = 1 << 12;
 
-    fn new(hot: &[GeomWithData<Rectangle<Pt>, (usize, usize)>], total: usize) -> Option<Self> {
+    fn new(hot: &[(Bbox, (usize, usize))], total: usize) -> Option<Self> {
         if hot.is_empty() || hot.len() * 4 > total {
             return None;
         }
         let mut sizes: Vec<f64> = hot
             .iter()
-            .map(|g| {
-                let e = g.envelope();
-                (e.upper()[0] - e.lower()[0]).max(e.upper()[1] - e.lower()[1])
-            })
+            .map(|(e, _)| (e[2] - e[0]).max(e[3] - e[1]))
             .collect();
         let mid = sizes.len() / 2;
         let (_, median, _) = sizes.select_nth_unstable_by(mid, f64::total_cmp);
@@ -110,8 +105,8 @@ impl NearHot {
             cell,
             marked: rustc_hash::FxHashSet::default(),
         };
-        for g in hot {
-            let (x0, y0, x1, y1) = grid.cells(&g.envelope())?;
+        for (e, _) in hot {
+            let (x0, y0, x1, y1) = grid.cells(e)?;
             for y in y0..=y1 {
                 for x in x0..=x1 {
                     grid.marked.insert((x, y));
@@ -121,34 +116,39 @@ impl NearHot {
         Some(grid)
     }
 
-    /// Cell range of an envelope; `None` when it is too large to mark.
-    fn cells(&self, env: &rstar::AABB<Pt>) -> Option<(i64, i64, i64, i64)> {
+    /// Cell range of a box; `None` when it is too large to mark.
+    fn cells(&self, e: &Bbox) -> Option<(i64, i64, i64, i64)> {
         let f = |v: f64| (v / self.cell).floor() as i64;
-        let (lo, hi) = (env.lower(), env.upper());
-        let (x0, y0, x1, y1) = (f(lo[0]), f(lo[1]), f(hi[0]), f(hi[1]));
+        let (x0, y0, x1, y1) = (f(e[0]), f(e[1]), f(e[2]), f(e[3]));
         ((x1 - x0 + 1).saturating_mul(y1 - y0 + 1) <= Self::MAX_CELLS).then_some((x0, y0, x1, y1))
     }
 }
 
 trait MayMeet {
-    fn may_meet(&self, env: &rstar::AABB<Pt>) -> bool;
+    fn may_meet(&self, e: &Bbox) -> bool;
 }
 
 impl MayMeet for Option<NearHot> {
-    /// Could a segment with this envelope meet a changed one? (`true` when unsure.)
-    fn may_meet(&self, env: &rstar::AABB<Pt>) -> bool {
+    /// Could a segment with this box meet a changed one? (`true` when unsure.)
+    fn may_meet(&self, e: &Bbox) -> bool {
         let Some(g) = self else {
             return true;
         };
-        let Some((x0, y0, x1, y1)) = g.cells(env) else {
+        let Some((x0, y0, x1, y1)) = g.cells(e) else {
             return true;
         };
         (y0..=y1).any(|y| (x0..=x1).any(|x| g.marked.contains(&(x, y))))
     }
 }
 
-fn bbox(e: &rstar::AABB<Pt>) -> Bbox {
-    [e.lower()[0], e.lower()[1], e.upper()[0], e.upper()[1]]
+/// The box of segment `a-b`.
+fn seg_box(a: Pt, b: Pt) -> Bbox {
+    [
+        a[0].min(b[0]),
+        a[1].min(b[1]),
+        a[0].max(b[0]),
+        a[1].max(b[1]),
+    ]
 }
 
 /// What one pair of segments shows: a problem, or a touch at an allowed shared vertex (whether
@@ -268,76 +268,81 @@ pub fn problems_where(
         changed.is_none_or(|c| c.get(k).and_then(|r| r.get(i)) != Some(&false))
     };
     let mut bad = Vec::new();
-    let mut items = Vec::new();
+    // The rings checked, and where each one's segments start in one numbering of them all (the
+    // segments are read from the rings where they are looked at: a list of every segment's box,
+    // 48 bytes each, was written and read again on every check).
+    let mut checked: Vec<(usize, usize)> = Vec::new();
+    let mut total = 0;
     for (k, r) in rings.iter().enumerate() {
         let n = r.pts.len();
         if n < 3 || signed_area(r.pts).abs() == 0.0 {
             bad.push((k, usize::MAX));
             continue;
         }
-        for i in 0..n {
-            let (a, b) = (r.pts[i], r.pts[(i + 1) % n]);
-            items.push(GeomWithData::new(Rectangle::from_corners(a, b), (k, i)));
+        checked.push((k, total));
+        total += n;
+    }
+    let seg = |k: usize, i: usize| {
+        let pts = rings[k].pts;
+        (pts[i], pts[(i + 1) % pts.len()])
+    };
+    interrupt();
+    // Every segment is looked up in an index of the changed ones (all of them on a first check):
+    // each pair with a changed segment is met once, and a small index is cheap to build.
+    let mut hot: Vec<(Bbox, (usize, usize))> = Vec::new();
+    for &(k, _) in &checked {
+        for i in 0..rings[k].pts.len() {
+            if is_changed(k, i) {
+                let (a, b) = seg(k, i);
+                hot.push((seg_box(a, b), (k, i)));
+            }
         }
     }
-    interrupt();
-    // Every segment is looked up in a tree of the changed ones (all of them on a first check):
-    // each pair with a changed segment is met once, and a small tree is cheap to build.
-    let changed_items: Vec<_>;
-    let hot: &[GeomWithData<Rectangle<Pt>, (usize, usize)>] = if changed.is_none() {
-        &items
-    } else {
-        changed_items = items
-            .iter()
-            .filter(|g| is_changed(g.data.0, g.data.1))
-            .cloned()
-            .collect();
-        &changed_items
-    };
-    let near = NearHot::new(hot, items.len());
+    let near = NearHot::new(&hot, total);
     // the changed segments, by (ring, segment): a grid, measured several times faster than the
     // R-tree on boundaries, whose segments are short and even (the tree when they are not)
-    let index = BoxIndex::new(hot.iter().map(|g| (bbox(&g.envelope()), g.data)).collect());
+    let index = BoxIndex::new(hot);
     // Each segment's pairs are found independently: on a large input the two halves of the
     // segments run side by side, their findings then taken in order, as one pass would.
-    let pairs = |items: &[GeomWithData<Rectangle<Pt>, (usize, usize)>],
-                 interrupt: &mut dyn FnMut()| {
+    let pairs = |from: usize, to: usize, interrupt: &mut dyn FnMut()| {
         let mut bad = Vec::new();
         let mut touches = Vec::new();
-        for (count, item) in items.iter().enumerate() {
-            if count % 8192 == 0 {
-                interrupt();
-            }
-            let (k, i) = item.data;
-            let item_changed = is_changed(k, i);
-            if !item_changed && !near.may_meet(&item.envelope()) {
-                continue;
-            }
-            let pts = rings[k].pts;
-            let n = pts.len();
-            let (a, b) = (pts[i], pts[(i + 1) % n]);
-            index.for_each_meeting(&bbox(&item.envelope()), |(k2, j)| {
-                if let Some(found) =
-                    pair_problem(rings, allowed, item_changed, (k, i), (a, b), (k2, j))
-                {
-                    match found {
-                        Found::Bad => {
-                            bad.push((k, i));
-                            bad.push((k2, j));
-                        }
-                        Found::Touch(t) => touches.push(t),
-                    }
+        for &(k, first) in &checked {
+            let n = rings[k].pts.len();
+            let (lo, hi) = (from.clamp(first, first + n), to.clamp(first, first + n));
+            for i in lo - first..hi - first {
+                if (first + i) % 8192 == 0 {
+                    interrupt();
                 }
-            });
+                let item_changed = is_changed(k, i);
+                let (a, b) = seg(k, i);
+                let env = seg_box(a, b);
+                if !item_changed && !near.may_meet(&env) {
+                    continue;
+                }
+                index.for_each_meeting(&env, |(k2, j)| {
+                    if let Some(found) =
+                        pair_problem(rings, allowed, item_changed, (k, i), (a, b), (k2, j))
+                    {
+                        match found {
+                            Found::Bad => {
+                                bad.push((k, i));
+                                bad.push((k2, j));
+                            }
+                            Found::Touch(t) => touches.push(t),
+                        }
+                    }
+                });
+            }
         }
         (bad, touches)
     };
-    let half = items.len() / 2;
+    let half = total / 2;
     let ((bad_a, touches_a), (bad_b, touches_b)) = crate::parallel::join(
-        items.len() as u64 >= crate::parallel::MIN_VERTICES,
+        total as u64 >= crate::parallel::MIN_VERTICES,
         interrupt,
-        |i| pairs(&items[..half], i),
-        |i| pairs(&items[half..], i),
+        |i| pairs(0, half, i),
+        |i| pairs(half, total, i),
     );
     bad.extend(bad_a);
     bad.extend(bad_b);
