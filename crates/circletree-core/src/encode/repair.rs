@@ -58,11 +58,7 @@ impl RingState {
     /// only overestimate the distance, so a span that passes is within the bound globally too.
     fn window(&self, s: usize) -> impl Iterator<Item = usize> {
         let m = self.m();
-        let (first, count) = if m <= 2 * WINDOW + 1 {
-            (0, m)
-        } else {
-            ((s + m - WINDOW) % m, 2 * WINDOW + 1)
-        };
+        let (first, count) = self.window_range(s);
         (0..count).map(move |d| (first + d) % m)
     }
 
@@ -91,24 +87,44 @@ impl RingState {
         (self.recon[i], self.recon[(i + 1) % n])
     }
 
-    /// The original edges of span `s`'s window, into `out`.
-    fn window_orig(&self, s: usize, out: &mut Vec<(Pt, Pt)>) {
-        out.clear();
-        out.extend(
-            self.window(s)
-                .flat_map(|t| self.orig_edges(t))
-                .map(|v| self.orig_seg(v)),
-        );
+    /// The first span of span `s`'s window and how many spans it has (consecutive, wrapping).
+    fn window_range(&self, s: usize) -> (usize, usize) {
+        let m = self.m();
+        if m <= 2 * WINDOW + 1 {
+            (0, m)
+        } else {
+            ((s + m - WINDOW) % m, 2 * WINDOW + 1)
+        }
     }
 
-    /// The stroke of span `s`'s window, into `out`.
+    /// The original edges of span `s`'s window, into `out`: consecutive spans stand for
+    /// consecutive edges, so the window's are one run of the ring from its first span's anchor.
+    fn window_orig(&self, s: usize, out: &mut Vec<(Pt, Pt)>) {
+        out.clear();
+        let (first, count) = self.window_range(s);
+        if self.m() == 1 {
+            out.extend(self.orig_edges(0).map(|v| self.orig_seg(v)));
+            return;
+        }
+        let edges: usize = (first..first + count)
+            .map(|t| self.orig_edges(t % self.m()).len())
+            .sum();
+        push_run(&self.pts, self.entries[first].anchor, edges, out);
+    }
+
+    /// The stroke of span `s`'s window, into `out`: one run of the stroke from where its first
+    /// span starts (span 0 starts at the stroke's first point).
     fn window_recon(&self, s: usize, out: &mut Vec<(Pt, Pt)>) {
         out.clear();
-        out.extend(
-            self.window(s)
-                .flat_map(|t| self.starts[t]..self.starts[t + 1])
-                .map(|i| self.recon_seg(i)),
-        );
+        let (first, count) = self.window_range(s);
+        let m = self.m();
+        let segments: usize = (first..first + count)
+            .map(|t| {
+                let t = t % m;
+                self.starts[t + 1] - self.starts[t]
+            })
+            .sum();
+        push_run(&self.recon, self.starts[first], segments, out);
     }
 
     /// Are span `s` and every span of its window straight (between two zero-radius circles)?
@@ -201,6 +217,22 @@ impl RingState {
 struct Scratch {
     segs: Vec<(Pt, Pt)>,
     caps: Capsules,
+}
+
+/// The `count` segments of the closed ring `pts` from vertex `from` on (wrapping), into `out`.
+fn push_run(pts: &[Pt], from: usize, count: usize, out: &mut Vec<(Pt, Pt)>) {
+    let n = pts.len();
+    if count == 0 {
+        return;
+    }
+    // (`from` is the ring's length where the spans before the wrap have no segment)
+    let mut v = if from >= n { 0 } else { from };
+    out.reserve(count);
+    for _ in 0..count {
+        let w = if v + 1 >= n { 0 } else { v + 1 };
+        out.push((pts[v], pts[w]));
+        v = w;
+    }
 }
 
 /// Squared distance between two points.
