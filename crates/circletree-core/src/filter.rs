@@ -17,8 +17,6 @@
 
 use crate::geometry::{dist, Pt};
 use crate::medial::Candidate;
-use rstar::primitives::{GeomWithData, Rectangle};
-use rstar::{RTree, RTreeObject};
 use std::hash::BuildHasher;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -522,7 +520,7 @@ pub fn select(n: usize, runs: Vec<Mapped>, overlap: f64) -> Vec<Mapped> {
     let mut owner = vec![NONE; n];
     let mut kept: Vec<Mapped> = Vec::new();
     // kept circles by their bounding boxes: two circles can only meet where their boxes do
-    let mut tree: RTree<GeomWithData<Rectangle<[f64; 2]>, usize>> = RTree::new();
+    let mut grid = KeptGrid::new(&runs);
     for m in runs {
         // (the edges in order from a start, without a division for each)
         let from = |start: usize| owner[start..].iter().chain(&owner[..start]);
@@ -560,22 +558,132 @@ pub fn select(n: usize, runs: Vec<Mapped>, overlap: f64) -> Vec<Mapped> {
                 last = o;
                 clashes(&kept[o as usize])
             });
-        let bbox = Rectangle::from_corners([m.c[0] - r, m.c[1] - r], [m.c[0] + r, m.c[1] + r]);
-        if near
-            || tree
-                .locate_in_envelope_intersecting(&bbox.envelope())
-                .any(|g| clashes(&kept[g.data]))
-        {
+        let bbox = [m.c[0] - r, m.c[1] - r, m.c[0] + r, m.c[1] + r];
+        if near || grid.any_meeting(&bbox, |o| clashes(&kept[o])) {
             continue;
         }
         let id = u32::try_from(kept.len()).unwrap_or(NONE - 1);
         let wrapped = (m.start + m.len).saturating_sub(n);
         owner[m.start..m.start + m.len - wrapped].fill(id);
         owner[..wrapped].fill(id);
-        tree.insert(GeomWithData::new(bbox, kept.len()));
+        grid.insert(kept.len(), bbox);
         kept.push(m);
     }
     kept
+}
+
+/// The kept circles of [`select`] by their boxes, for "does any kept circle whose box meets this
+/// box clash?": a grid of square cells, only the cells holding a box stored (hashed), each a list
+/// of the circles whose boxes cover it. An R*-tree took two thirds of `select`'s loop at a million
+/// vertices (320,000 look-ups and 100,000 inserts, each a walk down the tree); here a look-up is a
+/// few hashed cells. Which index answers does not change the answer: every circle whose box meets
+/// the box asked about is tested, in any order, some more than once.
+struct KeptGrid {
+    /// Cells per unit of length.
+    per: f64,
+    /// A cell's first entry in `links`.
+    heads: rustc_hash::FxHashMap<u64, u32>,
+    /// (circle, next entry of the same cell or `u32::MAX`).
+    links: Vec<(u32, u32)>,
+    /// Every circle's box, by circle.
+    boxes: Vec<[f64; 4]>,
+    /// Circles covering too many cells to be entered in each: tested on every look-up.
+    big: Vec<usize>,
+}
+
+/// Most cells a circle is entered in (larger ones go to [`KeptGrid::big`]).
+const MOST_CELLS: i64 = 1024;
+
+impl KeptGrid {
+    /// A grid whose cells are about twice the typical radius of `runs` (sampled).
+    fn new(runs: &[Mapped]) -> KeptGrid {
+        let step = (runs.len() / 4096).max(1);
+        let mut radii: Vec<f64> = runs.iter().step_by(step).map(|m| m.r.abs()).collect();
+        let cell = if radii.is_empty() {
+            1.0
+        } else {
+            let mid = radii.len() / 2;
+            4.0 * *radii.select_nth_unstable_by(mid, f64::total_cmp).1
+        };
+        KeptGrid {
+            per: if cell.is_finite() && cell > 0.0 {
+                1.0 / cell
+            } else {
+                1.0
+            },
+            heads: Default::default(),
+            links: Vec::new(),
+            boxes: Vec::new(),
+            big: Vec::new(),
+        }
+    }
+
+    /// The cell of a coordinate: monotone (a cast truncates toward zero and saturates), which
+    /// is all a grid needs for a box to be found in every cell it covers.
+    fn cell(&self, v: f64) -> i64 {
+        ((v * self.per) as i64).clamp(i64::from(i32::MIN), i64::from(i32::MAX))
+    }
+
+    fn cells(&self, b: &[f64; 4]) -> (i64, i64, i64, i64) {
+        (
+            self.cell(b[0]),
+            self.cell(b[1]),
+            self.cell(b[2]),
+            self.cell(b[3]),
+        )
+    }
+
+    fn key(x: i64, y: i64) -> u64 {
+        ((x as u32 as u64) << 32) | (y as u32 as u64)
+    }
+
+    fn insert(&mut self, id: usize, b: [f64; 4]) {
+        debug_assert_eq!(id, self.boxes.len());
+        self.boxes.push(b);
+        let (x0, y0, x1, y1) = self.cells(&b);
+        if (x1 - x0 + 1).saturating_mul(y1 - y0 + 1) > MOST_CELLS {
+            self.big.push(id);
+            return;
+        }
+        for x in x0..=x1 {
+            for y in y0..=y1 {
+                let head = self.heads.entry(Self::key(x, y)).or_insert(u32::MAX);
+                self.links.push((id as u32, *head));
+                *head = (self.links.len() - 1) as u32;
+            }
+        }
+    }
+
+    /// Does `test` hold for any stored circle whose box meets `q` (closed boxes)?
+    fn any_meeting(&self, q: &[f64; 4], mut test: impl FnMut(usize) -> bool) -> bool {
+        let meets = |b: &[f64; 4]| b[0] <= q[2] && b[2] >= q[0] && b[1] <= q[3] && b[3] >= q[1];
+        let mut check = |id: usize| meets(&self.boxes[id]) && test(id);
+        if self.big.iter().any(|&id| check(id)) {
+            return true;
+        }
+        let (x0, y0, x1, y1) = self.cells(q);
+        if (x1 - x0 + 1).saturating_mul(y1 - y0 + 1) > self.heads.len() as i64 {
+            // a box over more cells than hold anything: every circle is asked once
+            return (0..self.boxes.len()).any(check);
+        }
+        for x in x0..=x1 {
+            for y in y0..=y1 {
+                let mut at = self
+                    .heads
+                    .get(&Self::key(x, y))
+                    .copied()
+                    .unwrap_or(u32::MAX);
+                while at != u32::MAX {
+                    let (id, next) = self.links[at as usize];
+                    if check(id as usize) {
+                        return true;
+                    }
+                    at = next;
+                }
+            }
+        }
+        false
+    }
 }
 
 #[cfg(test)]
@@ -583,6 +691,59 @@ mod tests {
     use super::*;
     use crate::medial::candidates;
     use proptest::prelude::*;
+
+    /// [`KeptGrid`] finds what testing every stored box finds: circles from metres to far larger
+    /// than the cells (entered as big ones), asked about with boxes as small as a point and as
+    /// large as everything, with a test that holds for some circles only.
+    #[test]
+    fn kept_grid_finds_what_every_box_finds() {
+        let mut next = crate::test_uniform(11);
+        let runs: Vec<Mapped> = (0..2000)
+            .map(|i| Mapped {
+                c: [next() * 50_000.0 - 25_000.0, next() * 50_000.0 + 1e6],
+                r: (next() * 40.0 + 1.0) * if i % 97 == 0 { 500.0 } else { 1.0 },
+                start: i,
+                len: 2,
+            })
+            .collect();
+        let mut grid = KeptGrid::new(&runs);
+        let boxes: Vec<[f64; 4]> = runs
+            .iter()
+            .map(|m| [m.c[0] - m.r, m.c[1] - m.r, m.c[0] + m.r, m.c[1] + m.r])
+            .collect();
+        for (id, b) in boxes.iter().enumerate().take(1500) {
+            grid.insert(id, *b);
+        }
+        assert!(
+            !grid.big.is_empty(),
+            "some circles must be too large for the cells"
+        );
+        let meets = |b: &[f64; 4], q: &[f64; 4]| {
+            b[0] <= q[2] && b[2] >= q[0] && b[1] <= q[3] && b[3] >= q[1]
+        };
+        let (mut yes, mut no) = (0, 0);
+        for (k, m) in runs.iter().enumerate() {
+            let r = if k % 50 == 0 {
+                1e7
+            } else {
+                m.r * (k % 3) as f64
+            };
+            let q = [m.c[0] - r, m.c[1] - r, m.c[0] + r, m.c[1] + r];
+            // a test that holds for a third of the circles (of the small ones, every other time)
+            let test = |id: usize| id % 3 == k % 3 && (k.is_multiple_of(2) || !id.is_multiple_of(97));
+            let want = (0..1500).any(|id| meets(&boxes[id], &q) && test(id));
+            assert_eq!(grid.any_meeting(&q, test), want, "query {k}");
+            if want {
+                yes += 1;
+            } else {
+                no += 1;
+            }
+        }
+        assert!(
+            yes > 100 && no > 100,
+            "{yes} found, {no} not: both must be tested"
+        );
+    }
 
     /// [`distinct`] keeps the first candidate of each cell, in order, the same as one plain set
     /// would: here on enough candidates to be spread over many lists and two threads, most of
