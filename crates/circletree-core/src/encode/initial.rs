@@ -44,17 +44,17 @@ pub(super) fn initial_entries(
 ) -> Vec<Entry> {
     let n = ring.len();
     let (kept, dp_points) = if circles {
-        let cands = medial::candidates(ring, interrupt);
-        let runs = filter::map_runs(ring, &cands, opts.min_radius, max_error / 2.0, interrupt);
-        interrupt();
         // Douglas-Peucker's points need nothing of the circles: on a large ring they are found
-        // beside the selection.
-        crate::parallel::join(
+        // beside the triangulation (its insertion runs on one thread; `select` uses two).
+        let (cands, dp_points) = crate::parallel::join(
             n as u64 >= crate::parallel::MIN_VERTICES,
             interrupt,
-            |_| filter::select(n, runs, opts.overlap),
+            |i| medial::candidates(ring, i),
             |_| opts.dp_tolerance.map(|dp| douglas_peucker::keep(ring, dp)),
-        )
+        );
+        let runs = filter::map_runs(ring, &cands, opts.min_radius, max_error / 2.0, interrupt);
+        interrupt();
+        (filter::select(n, runs, opts.overlap), dp_points)
     } else {
         (Vec::new(), None)
     };
