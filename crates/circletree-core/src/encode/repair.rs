@@ -45,6 +45,10 @@ const DIRTY_REACH: usize = WINDOW + 2;
 /// neighbour's stroke then reaches across it.
 const WINDOW: usize = 2;
 
+/// The true arcs are checked beside the distances when fewer than one span in this many is to
+/// be measured again.
+const FEW_DIRTY: usize = 16;
+
 /// Above this many target segments a window is searched through an R-tree, not by brute force.
 const BRUTE_FORCE_LIMIT: usize = 96;
 
@@ -496,12 +500,36 @@ pub(super) fn verify_and_repair(
         // else: on a large input they run side by side.
         let segments: usize = rings.iter().map(|r| r.recon.len()).sum();
         let rings_ref = &rings;
-        let (mut failing, (problems, problem_at)) = parallel::join(
+        // Three checks on two threads: the stroke's validity on one, the distances and the
+        // true arcs' validity on the other once few spans are left to measure (the later
+        // rounds, where the distances take a millisecond), else the arcs after the stroke.
+        let dirty: usize = rings
+            .iter()
+            .map(|r| r.dirty.iter().filter(|&&d| d).count())
+            .sum();
+        let spans: usize = rings.iter().map(|r| r.m()).sum();
+        let arcs_beside = dirty * FEW_DIRTY < spans;
+        let ((mut failing, arc_found), (mut problems, mut problem_at)) = parallel::join(
             segments as u64 >= crate::parallel::MIN_VERTICES,
             interrupt,
-            |i| distance_failures(ctx, rings_ref, max_error, g, target, i),
-            |i| validity_failures(ctx, rings_ref, g, i),
+            |i| {
+                let failing = distance_failures(ctx, rings_ref, max_error, g, target, i);
+                (failing, arcs_beside.then(|| arc_failures(rings_ref, g, i)))
+            },
+            |i| {
+                let (mut found, mut at) = stroke_failures(ctx, rings_ref, i);
+                if !arcs_beside {
+                    let (more, arc_at) = arc_failures(rings_ref, g, i);
+                    found.extend(more);
+                    at = at.or(arc_at);
+                }
+                (found, at)
+            },
         );
+        if let Some((more, arc_at)) = arc_found {
+            problems.extend(more);
+            problem_at = problem_at.or(arc_at);
+        }
         for (k, s) in problems {
             failing[k].push(s);
         }
@@ -568,12 +596,11 @@ fn distance_failures(
     failing
 }
 
-/// Spans (ring, span) that make the rebuild invalid, on the stroke or on the true arcs
-/// (`usize::MAX` spans are spread to the whole ring), and a point near the first problem.
-fn validity_failures(
+/// Spans (ring, span) that make the stroked rebuild invalid (`usize::MAX` spans are spread to
+/// the whole ring), and a point near the first problem.
+fn stroke_failures(
     ctx: &Context,
     rings: &[RingState],
-    g: f64,
     interrupt: &mut dyn FnMut(),
 ) -> (Vec<(usize, usize)>, Option<Pt>) {
     let mut failing: Vec<(usize, usize)> = Vec::new();
@@ -645,6 +672,18 @@ fn validity_failures(
             }
         }
     }
+    (failing, problem_at)
+}
+
+/// Spans (ring, span) whose true arcs meet another piece or hold another ring in a sliver
+/// (`usize::MAX` spans are spread to the whole ring), and a point near the first.
+fn arc_failures(
+    rings: &[RingState],
+    g: f64,
+    interrupt: &mut dyn FnMut(),
+) -> (Vec<(usize, usize)>, Option<Pt>) {
+    let mut failing: Vec<(usize, usize)> = Vec::new();
+    let mut problem_at: Option<Pt> = None;
     {
         // The true arcs between the stroked points.
         let refs: Vec<arcs::ArcRing> = rings
