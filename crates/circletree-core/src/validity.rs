@@ -7,7 +7,7 @@
 //! vertex to vertex, and without crossing there. Segment pairs are found with a uniform grid
 //! ([`crate::box_grid`]; an R-tree when the segments are spread too unevenly for one). [`crate::arcs`] checks the true arcs between the stroked points.
 
-use crate::box_grid::{Bbox, BoxIndex};
+use crate::box_grid::{union, Bbox, BoxIndex, EMPTY};
 use crate::geometry::{signed_area, Pt};
 use robust::{orient2d, Coord};
 
@@ -140,6 +140,9 @@ impl MayMeet for Option<NearHot> {
         (y0..=y1).any(|y| (x0..=x1).any(|x| g.marked.contains(&(x, y))))
     }
 }
+
+/// Segments looked at together first in [`problems_where`]'s later checks.
+const NEAR_BLOCK: usize = 32;
 
 /// The box of segment `a-b`.
 fn seg_box(a: Pt, b: Pt) -> Bbox {
@@ -309,10 +312,29 @@ pub fn problems_where(
         let mut touches = Vec::new();
         for &(k, first) in &checked {
             let n = rings[k].pts.len();
-            let (lo, hi) = (from.clamp(first, first + n), to.clamp(first, first + n));
-            for i in lo - first..hi - first {
+            let (lo, hi) = (
+                from.clamp(first, first + n) - first,
+                to.clamp(first, first + n) - first,
+            );
+            let (mut block_end, mut skip) = (lo, false);
+            for i in lo..hi {
                 if (first + i) % 8192 == 0 {
                     interrupt();
+                }
+                // A block of unchanged segments whose box meets no changed segment's cell is
+                // passed over with one look instead of one a segment (the later rounds' case:
+                // a few changes among a ring of thousands of segments).
+                if i == block_end {
+                    block_end = (i + NEAR_BLOCK).min(hi);
+                    skip = near.is_some()
+                        && (i..block_end).all(|i| !is_changed(k, i))
+                        && !near.may_meet(&(i..block_end).fold(EMPTY, |b, i| {
+                            let (a, c) = seg(k, i);
+                            union(b, seg_box(a, c))
+                        }));
+                }
+                if skip {
+                    continue;
                 }
                 let item_changed = is_changed(k, i);
                 let (a, b) = seg(k, i);
@@ -465,6 +487,45 @@ mod tests {
             &mut || {}
         )
         .is_empty());
+    }
+
+    /// With only a few segments changed, a changed one crossing an unchanged one in the middle of
+    /// a long unchanged stretch is found (blocks of unchanged segments are passed over only when
+    /// nothing changed comes near them), and without the crossing nothing is.
+    #[test]
+    fn a_change_crossing_an_unchanged_stretch_is_found() {
+        // a comb: a long bottom edge of 400 short segments, then up, and back along the top
+        let mut ring: Vec<Pt> = (0..=400).map(|i| [i as f64, 0.0]).collect();
+        ring.extend([
+            [400.0, 50.0],
+            [210.0, 50.0],
+            [200.5, 20.0],
+            [190.0, 50.0],
+            [0.0, 50.0],
+        ]);
+        let n = ring.len();
+        let changed_at = |tip: f64| {
+            let mut r = ring.clone();
+            r[403][1] = tip;
+            let mut changed = vec![false; n];
+            changed[402] = true;
+            changed[403] = true;
+            (r, vec![changed])
+        };
+        for (tip, crosses) in [(20.0, false), (-5.0, true)] {
+            let (r, changed) = changed_at(tip);
+            let rings = [RingRef {
+                part: 0,
+                ring: 0,
+                pts: &r,
+            }];
+            let found = problems_where(&rings, Some(&changed), &Touches::default(), &mut || {});
+            assert_eq!(!found.is_empty(), crosses, "tip at {tip}: {found:?}");
+            if crosses {
+                // the bottom segments under the tip, far inside the unchanged stretch
+                assert!(found.iter().any(|&(_, i)| (199..=201).contains(&i)), "{found:?}");
+            }
+        }
     }
 
     #[test]
