@@ -523,7 +523,10 @@ mod tests {
             assert_eq!(!found.is_empty(), crosses, "tip at {tip}: {found:?}");
             if crosses {
                 // the bottom segments under the tip, far inside the unchanged stretch
-                assert!(found.iter().any(|&(_, i)| (199..=201).contains(&i)), "{found:?}");
+                assert!(
+                    found.iter().any(|&(_, i)| (199..=201).contains(&i)),
+                    "{found:?}"
+                );
             }
         }
     }
