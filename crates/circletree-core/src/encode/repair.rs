@@ -682,29 +682,26 @@ fn arc_failures(
     g: f64,
     interrupt: &mut dyn FnMut(),
 ) -> (Vec<(usize, usize)>, Option<Pt>) {
+    let refs: Vec<arcs::ArcRing> = rings
+        .iter()
+        .map(|r| arcs::ArcRing {
+            spans: &r.spans,
+            dirty: Some(&r.dirty),
+        })
+        .collect();
+    let probes: Vec<Pt> = rings
+        .iter()
+        .map(|r| r.recon.first().copied().unwrap_or([0.0, 0.0]))
+        .collect();
     let mut failing: Vec<(usize, usize)> = Vec::new();
     let mut problem_at: Option<Pt> = None;
-    {
-        // The true arcs between the stroked points.
-        let refs: Vec<arcs::ArcRing> = rings
-            .iter()
-            .map(|r| arcs::ArcRing {
-                spans: &r.spans,
-                dirty: Some(&r.dirty),
-            })
-            .collect();
-        let probes: Vec<Pt> = rings
-            .iter()
-            .map(|r| r.recon.first().copied().unwrap_or([0.0, 0.0]))
-            .collect();
-        for (k, s) in arcs::problems(&refs, &probes, g, g * 1e-6, interrupt) {
-            if s == usize::MAX {
-                failing.extend((0..rings[k].entries.len()).map(|s| (k, s)));
-            } else {
-                failing.push((k, s));
-            }
-            problem_at = problem_at.or(rings[k].recon.first().copied());
+    for (k, s) in arcs::problems(&refs, &probes, g, g * 1e-6, interrupt) {
+        if s == usize::MAX {
+            failing.extend((0..rings[k].entries.len()).map(|s| (k, s)));
+        } else {
+            failing.push((k, s));
         }
+        problem_at = problem_at.or(rings[k].recon.first().copied());
     }
     (failing, problem_at)
 }
