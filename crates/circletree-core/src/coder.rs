@@ -461,7 +461,11 @@ impl<'a> Reader<'a> {
         } else {
             let up = self.bit(&mut m.up[ctx]);
             let max = if up {
-                64 - pred - 1
+                // (a class above 63 is refused below; from a predicted 64 a stream cannot go up)
+                match 63u32.checked_sub(pred) {
+                    Some(max) => max,
+                    None => return Err(corrupt()),
+                }
             } else {
                 pred.saturating_sub(1)
             };

@@ -519,6 +519,24 @@ mod tests {
         }
     }
 
+    /// Found by the decode fuzz target: an integer coded as going up from a predicted class of
+    /// 64 (which no writer makes) overflowed the reader's arithmetic (a panic in debug builds).
+    /// Now an error.
+    #[test]
+    fn a_class_going_up_from_the_top_is_an_error() {
+        let bytes: &[u8] = &[
+            2, 3, 240, 255, 3, 70, 0, 50, 0, 0, 0, 1, 236, 38, 254, 50, 0, 237, 15, 221, 253, 1, 0,
+            1, 132, 143, 1, 196, 138, 19, 254, 255, 255, 255, 255, 255, 255, 255, 44, 75, 58, 13,
+            71, 52, 121, 198, 230, 162, 241, 37, 65, 36, 148, 214, 2, 151, 226, 179, 30, 182, 172,
+            205, 142, 125, 117, 230, 8, 12, 93, 129, 161, 246, 229, 41, 71, 239, 5, 216, 55, 108,
+            57, 33, 176, 69, 74, 215, 10, 104, 68, 159, 115, 194, 121, 224, 200, 146, 113, 6, 18,
+            219, 1, 0, 208, 1, 0, 0, 0, 0, 0, 0, 0, 0, 158, 1, 5, 35, 16, 31, 0, 69, 20, 41, 49,
+            21, 37, 61, 22, 47, 41, 19, 0, 85, 2, 27, 25, 6, 0, 143, 1, 61, 138, 1, 35, 31, 13, 0,
+            193, 1, 184, 166, 117, 239, 130, 158, 228, 158, 140,
+        ];
+        assert!(CircleTree::from_bytes(bytes).is_err());
+    }
+
     #[test]
     fn round_trip_and_size() {
         for v in VERSIONS {
