@@ -3,13 +3,13 @@
 //! ring's points. A triangle on the polygon's side of the ring gives a positive radius (internal
 //! circle), one on the other side a negative radius (external circle, section 3.4).
 //!
-//! The ring's edges are the constraints, so every triangle lies wholly on one side: a triangle with
-//! a ring edge knows its side from the edge's direction, the others inherit it by flood fill across
-//! unconstrained edges. Coordinates are moved to a local origin first (circumcentres of UTM-sized
+//! The ring's edges are edges of the triangulation (those Delaunay's lacks are added as constraints),
+//! so every triangle lies wholly on one side: a triangle with a ring edge knows its side from the
+//! edge's direction, the others inherit it by flood fill across the other edges. Coordinates are moved to a local origin first (circumcentres of UTM-sized
 //! coordinates lose digits). Cost: O(n log n).
 
 use crate::geometry::Pt;
-use spade::handles::{FixedFaceHandle, FixedVertexHandle};
+use spade::handles::FixedVertexHandle;
 use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
 
 /// A candidate circle: centre, signed radius, and the ring vertices it passes through.
@@ -63,7 +63,7 @@ pub fn candidates(ring: &[Pt], interrupt: &mut dyn FnMut()) -> Vec<Candidate> {
     // triangles).
     let mut order: Vec<(u8, u32)> = (0..n).map(|i| (insertion_level(i), i as u32)).collect();
     order.sort_unstable_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
-    let mut cdt = ConstrainedDelaunayTriangulation::<V>::with_capacity(n, 3 * n, 2 * n);
+    let mut cdt = Ring::with_capacity(n, 3 * n, 2 * n);
     let mut handles = vec![FixedVertexHandle::from_index(0); n];
     let mut last = None;
     for (k, &(_, i)) in order.iter().enumerate() {
@@ -85,32 +85,57 @@ pub fn candidates(ring: &[Pt], interrupt: &mut dyn FnMut()) -> Vec<Candidate> {
     if cdt.num_vertices() != n {
         return vec![];
     }
-    for i in 0..n {
-        if i % 4096 == 0 {
-            interrupt();
+    // Nearly every edge of a ring is an edge of its Delaunay triangulation already; only the
+    // others are added as constraints (spade's `try_add_constraint` walks the line and allocates
+    // even for an edge that exists: 5% of the encoder). The triangulation is the same: an edge
+    // added as a constraint is found by flips of the edges crossing it alone. The faces on either
+    // side of each ring edge take their side from it as it is found (`seed_sides`).
+    let mut missing = Vec::new();
+    let mut side = seed_sides(&cdt, &handles, &mut missing);
+    if !missing.is_empty() {
+        for (k, &i) in missing.iter().enumerate() {
+            if k % 4096 == 0 {
+                interrupt();
+            }
+            // none when it would cross an edge already constrained: the ring crosses itself
+            if cdt
+                .try_add_constraint(handles[i], handles[(i + 1) % n])
+                .is_empty()
+            {
+                return vec![];
+            }
         }
-        // none when it would cross an edge already constrained: the ring crosses itself
-        if cdt
-            .try_add_constraint(handles[i], handles[(i + 1) % n])
-            .is_empty()
-        {
+        // An added edge that crossed a ring edge not marked (the ring crosses itself) flipped it
+        // away; one that passed through a vertex was split there (the ring touches itself):
+        // either way a ring edge is then no edge of the triangulation.
+        missing.clear();
+        side = seed_sides(&cdt, &handles, &mut missing);
+        if !missing.is_empty() {
             return vec![];
         }
     }
     interrupt();
-    // The faces' sides and their circumcircles need nothing of each other: on a large ring they
-    // are found side by side.
-    let (side, circles) = crate::parallel::join(
+    // The other faces' sides and the circumcircles need nothing of each other: on a large ring
+    // they are found side by side, the thread that fills the sides taking fewer circumcircles
+    // (filling is about a third of their cost).
+    let faces = cdt.all_faces().len();
+    let split = 1 + (faces - 1) * 3 / 8;
+    let (mut circles, rest) = crate::parallel::join(
         n as u64 >= crate::parallel::MIN_VERTICES,
         interrupt,
-        |_| sides(&cdt, n),
-        |i| circumcircles(&cdt, i),
+        |i| {
+            fill_sides(&cdt, &mut side);
+            circumcircles(&cdt, 1..split, i)
+        },
+        |i| circumcircles(&cdt, split..faces, i),
     );
+    // (the order of the faces is not the candidates': they are sorted by their vertices below)
+    circles.extend(rest);
     // The faces with a side, in order of their vertices: by the lowest (a counting sort, placed
     // straight from the faces), then the other two.
     let mut start = vec![0usize; n + 1];
     for &(f, _, _, verts) in &circles {
-        if side[f].is_some() {
+        if side[f] != UNSET {
             start[verts[0] + 1] += 1;
         }
     }
@@ -125,10 +150,10 @@ pub fn candidates(ring: &[Pt], interrupt: &mut dyn FnMut()) -> Vec<Candidate> {
     let mut out = vec![unset; start[n]];
     let mut next = start.clone();
     for (f, c, r, verts) in circles {
-        if let Some(inside) = side[f] {
+        if side[f] != UNSET {
             out[next[verts[0]]] = Candidate {
                 c: [c[0] + o[0], c[1] + o[1]],
-                r: if inside { r } else { -r },
+                r: if side[f] == INSIDE { r } else { -r },
                 verts,
             };
             next[verts[0]] += 1;
@@ -140,67 +165,115 @@ pub fn candidates(ring: &[Pt], interrupt: &mut dyn FnMut()) -> Vec<Candidate> {
     out
 }
 
-/// Each inner face's side of the ring (`Some(true)`: the polygon's, left of the ring), by face
-/// index: a face with a ring edge knows it from the edge's direction, the others inherit it by
-/// flood fill across unconstrained edges.
-fn sides(cdt: &ConstrainedDelaunayTriangulation<V>, n: usize) -> Vec<Option<bool>> {
-    let mut side: Vec<Option<bool>> = vec![None; cdt.all_faces().len()];
-    let mut queue: Vec<FixedFaceHandle<spade::handles::InnerTag>> = Vec::new();
-    for face in cdt.inner_faces() {
-        for e in face.adjacent_edges() {
-            if e.is_constraint_edge() {
-                let (a, b) = (e.from().data().i, e.to().data().i);
-                // Faces lie to the left of their own (counter-clockwise) edges.
-                side[face.fix().index()] = Some(b == (a + 1) % n);
-                queue.push(face.fix());
-                break;
-            }
-        }
-    }
-    while let Some(f) = queue.pop() {
-        let face = cdt.face(f);
-        let s = side[f.index()];
-        for e in face.adjacent_edges() {
-            if e.is_constraint_edge() {
-                continue;
-            }
-            if let Some(other) = e.rev().face().as_inner() {
-                let k = other.fix().index();
-                if side[k].is_none() {
-                    side[k] = s;
-                    queue.push(other.fix());
+/// A triangulation of one ring: its constraints are the ring edges Delaunay's lacked.
+type Ring = ConstrainedDelaunayTriangulation<V>;
+
+/// A face's side of the ring, by face index: not known (yet), the polygon's (left of the ring),
+/// the other.
+const UNSET: u8 = 0;
+const INSIDE: u8 = 1;
+const OUTSIDE: u8 = 2;
+
+/// The sides of the faces on either side of each ring edge, by face index (a face lies to the
+/// left of its own counter-clockwise edges, the polygon left of the ring); the ring edges the
+/// triangulation lacks are listed in `missing`.
+fn seed_sides(cdt: &Ring, handles: &[FixedVertexHandle], missing: &mut Vec<usize>) -> Vec<u8> {
+    let n = handles.len();
+    let mut side = vec![UNSET; cdt.all_faces().len()];
+    for i in 0..n {
+        match cdt.get_edge_from_neighbors(handles[i], handles[if i + 1 == n { 0 } else { i + 1 }]) {
+            Some(e) => {
+                if let Some(f) = e.face().as_inner() {
+                    side[f.fix().index()] = INSIDE;
+                }
+                if let Some(f) = e.rev().face().as_inner() {
+                    side[f.fix().index()] = OUTSIDE;
                 }
             }
+            None => missing.push(i),
         }
     }
     side
+}
+
+/// The sides of the inner faces without a ring edge: each group of such faces joined by edges
+/// (none of them the ring's) takes the side of a face with a ring edge next to it; a face no such
+/// face reaches stays unset. The groups are joined (union-find) in one pass over the edges in the
+/// order they are stored: a walk from face to face was cache misses, 10% of the candidates.
+fn fill_sides(cdt: &Ring, side: &mut [u8]) {
+    let mut parent: Vec<u32> = (0..side.len() as u32).collect();
+    fn root(parent: &mut [u32], mut f: u32) -> u32 {
+        while parent[f as usize] != f {
+            let up = parent[parent[f as usize] as usize];
+            parent[f as usize] = up;
+            f = up;
+        }
+        f
+    }
+    for e in cdt.undirected_edges() {
+        let e = e.as_directed();
+        let (Some(f), Some(g)) = (e.face().as_inner(), e.rev().face().as_inner()) else {
+            continue;
+        };
+        let (f, g) = (f.fix().index(), g.fix().index());
+        if side[f] != UNSET && side[g] != UNSET {
+            continue;
+        }
+        // A root's side is its group's, once the group meets a face that has one.
+        let (rf, rg) = (root(&mut parent, f as u32), root(&mut parent, g as u32));
+        if rf != rg {
+            parent[rg as usize] = rf;
+            if side[rf as usize] == UNSET {
+                side[rf as usize] = side[rg as usize];
+            }
+        }
+    }
+    for f in 0..side.len() {
+        if side[f] == UNSET {
+            side[f] = side[root(&mut parent, f as u32) as usize];
+        }
+    }
 }
 
 /// Each inner face's circumcircle, where it has one: face index, centre (local coordinates),
 /// radius and vertices from the lowest.
 #[allow(clippy::type_complexity)]
 fn circumcircles(
-    cdt: &ConstrainedDelaunayTriangulation<V>,
+    cdt: &Ring,
+    faces: std::ops::Range<usize>,
     interrupt: &mut dyn FnMut(),
 ) -> Vec<(usize, Pt, f64, [usize; 3])> {
-    let mut out = Vec::with_capacity(cdt.num_inner_faces());
-    for (k, face) in cdt.inner_faces().enumerate() {
+    let mut out = Vec::with_capacity(faces.len());
+    // inner faces are numbered from 1 (0 is the outer face)
+    let inner = cdt.inner_faces().skip(faces.start - 1).take(faces.len());
+    for (k, face) in inner.enumerate() {
         if k % 4096 == 0 {
             interrupt();
         }
-        let (c, r2) = face.circumcircle();
-        if !(r2.is_finite() && c.x.is_finite() && c.y.is_finite()) || r2 <= 0.0 {
+        let f = face.fix().index();
+        // the vertices read once, for the positions and the indices alike
+        let vs = face.vertices().map(|v| *v.data());
+        let (c, r2) = circumcircle(vs.map(|v| v.p));
+        if !(r2.is_finite() && c[0].is_finite() && c[1].is_finite()) || r2 <= 0.0 {
             continue;
         }
-        let vs = face.vertices();
-        out.push((
-            face.fix().index(),
-            [c.x, c.y],
-            r2.sqrt(),
-            first_lowest([vs[0].data().i, vs[1].data().i, vs[2].data().i]),
-        ));
+        out.push((f, c, r2.sqrt(), first_lowest(vs.map(|v| v.i))));
     }
     out
+}
+
+/// The circumcircle's centre and squared radius of a triangle: spade's own formula
+/// (`FaceHandle::circumcircle`), the same operations in the same order, so the same bits.
+fn circumcircle(p: [Point2<f64>; 3]) -> (Pt, f64) {
+    let (bx, by) = (p[1].x - p[0].x, p[1].y - p[0].y);
+    let (cx, cy) = (p[2].x - p[0].x, p[2].y - p[0].y);
+    let d = 2.0 * (bx * cy - cx * by);
+    let len_b = bx * bx + by * by;
+    let len_c = cx * cx + cy * cy;
+    let d_inv = 1.0 / d;
+    let x = (len_b * cy - len_c * by) * d_inv;
+    let y = (-len_b * cx + len_c * bx) * d_inv;
+    ([x + p[0].x, y + p[0].y], x * x + y * y)
 }
 
 /// The round vertex `i` is inserted in (see [`candidates`]): the trailing zeros of a hash of
@@ -332,5 +405,92 @@ mod tests {
         for k in c.iter().filter(|k| k.r < 0.0) {
             assert!(k.c[0] > 3.9 && k.c[0] < 6.1, "{k:?}");
         }
+    }
+
+    /// Whether `p` lies inside `ring` (crossing number).
+    fn inside(ring: &[Pt], p: Pt) -> bool {
+        let mut odd = false;
+        for i in 0..ring.len() {
+            let (a, b) = (ring[i], ring[(i + 1) % ring.len()]);
+            if (a[1] > p[1]) != (b[1] > p[1])
+                && p[0] < a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0])
+            {
+                odd = !odd;
+            }
+        }
+        odd
+    }
+
+    #[test]
+    fn ring_edges_delaunay_lacks_are_added_and_every_side_is_right() {
+        // A comb of teeth 1 m apart, long and short in turn: a long tooth's sides pass 1 m from
+        // the short teeth's tips on either side, which lie in every circle through a side's
+        // ends, so the sides are no Delaunay edges and must be added as constraints.
+        let teeth = 40;
+        let mut ring: Vec<Pt> = vec![[0.0, -10.0], [teeth as f64, -10.0]];
+        for k in (0..=teeth).rev() {
+            ring.push([k as f64, if k % 2 == 0 { 100.0 } else { 50.0 }]);
+            if k > 0 {
+                ring.push([k as f64 - 0.5, 0.0]);
+            }
+        }
+        let verts: Vec<Point2<f64>> = ring.iter().map(|p| Point2::new(p[0], p[1])).collect();
+        let dt = spade::DelaunayTriangulation::<Point2<f64>>::bulk_load_stable(verts).unwrap();
+        let lacking = (0..ring.len())
+            .filter(|&i| {
+                let h = |i: usize| FixedVertexHandle::from_index(i % ring.len());
+                dt.get_edge_from_neighbors(h(i), h(i + 1)).is_none()
+            })
+            .count();
+        assert!(lacking >= 2, "{lacking}");
+        let c = candidates(&ring, &mut || {});
+        let ours: Vec<[usize; 3]> = c.iter().map(|c| c.verts).collect();
+        assert_eq!(ours, bulk_triangles(&ring));
+        for k in &c {
+            let [a, b, d] = k.verts.map(|v| ring[v]);
+            let mid = [(a[0] + b[0] + d[0]) / 3.0, (a[1] + b[1] + d[1]) / 3.0];
+            assert_eq!(k.r > 0.0, inside(&ring, mid), "{k:?}");
+        }
+        // and on the wavy coastline, whose triangles have no ring edge in long stretches
+        let n = 2000;
+        let at = |i: usize| i as f64 / n as f64 * std::f64::consts::TAU;
+        let wavy: Vec<Pt> = (0..n)
+            .map(|i| {
+                let r = 1e4 + 3e3 * (7.0 * at(i)).sin() + 40.0 * (131.0 * at(i)).sin();
+                [r * at(i).cos(), r * at(i).sin()]
+            })
+            .collect();
+        let c = candidates(&wavy, &mut || {});
+        assert_eq!(c.len(), bulk_triangles(&wavy).len());
+        for k in &c {
+            let [a, b, d] = k.verts.map(|v| wavy[v]);
+            let mid = [(a[0] + b[0] + d[0]) / 3.0, (a[1] + b[1] + d[1]) / 3.0];
+            assert_eq!(k.r > 0.0, inside(&wavy, mid), "{k:?}");
+        }
+    }
+
+    #[test]
+    fn a_ring_crossing_or_touching_itself_has_no_candidates() {
+        // a bow tie: its two diagonals cross (Delaunay has one of them)
+        let bow = [[0.0, 0.0], [10.0, 10.0], [10.0, 0.0], [0.0, 10.0]];
+        assert!(candidates(&bow, &mut || {}).is_empty());
+        // a long edge under a saw crossing it
+        let mut saw: Vec<Pt> = vec![[0.0, 0.0], [100.0, 0.0]];
+        for k in 0..10 {
+            let x = 100.0 - 10.0 * k as f64;
+            saw.push([x, 10.0]);
+            saw.push([x - 5.0, if k == 4 { -1.0 } else { 1.0 }]);
+        }
+        saw.push([0.0, 10.0]);
+        assert!(candidates(&saw, &mut || {}).is_empty());
+        // a vertex on the middle of another edge
+        let touch = [
+            [0.0, 0.0],
+            [10.0, 0.0],
+            [10.0, 10.0],
+            [5.0, 0.0],
+            [0.0, 10.0],
+        ];
+        assert!(candidates(&touch, &mut || {}).is_empty());
     }
 }
