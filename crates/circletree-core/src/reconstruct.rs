@@ -85,6 +85,13 @@ pub struct Span {
     len: u8,
 }
 
+impl Default for Span {
+    /// A point: a place to be written over.
+    fn default() -> Span {
+        Span::one(Seg::Line([0.0; 2], [0.0; 2]))
+    }
+}
+
 impl Span {
     fn one(tangent: Seg) -> Span {
         Span {
@@ -234,16 +241,31 @@ pub fn for_each_span(circles: &[[f64; 3]], mut f: impl FnMut(Span)) {
         }));
         return;
     }
-    let first_tan = ring_tangent(circles, 0);
-    let first = ring_join(circles[0], ring_tangent(circles, m - 1), first_tan);
-    let (mut tan, mut join) = (first_tan, first);
-    for i in 0..m {
-        let (next_tan, next_join) = if i + 1 < m {
-            let t = ring_tangent(circles, i + 1);
-            (t, ring_join(circles[i + 1], tan, t))
-        } else {
-            (first_tan, first)
-        };
+    for_each_span_in(circles, 0..m, f);
+}
+
+/// [`for_each_span`] for spans `range` alone (of a ring of two circles or more): the same spans,
+/// so that parts of a long ring can be rebuilt apart.
+pub fn for_each_span_in(
+    circles: &[[f64; 3]],
+    range: std::ops::Range<usize>,
+    mut f: impl FnMut(Span),
+) {
+    let m = circles.len();
+    if range.is_empty() {
+        return;
+    }
+    let at = |i: usize| if i == m { 0 } else { i };
+    let before = if range.start == 0 {
+        m - 1
+    } else {
+        range.start - 1
+    };
+    let mut tan = ring_tangent(circles, range.start);
+    let mut join = ring_join(circles[range.start], ring_tangent(circles, before), tan);
+    for i in range {
+        let next_tan = ring_tangent(circles, at(i + 1));
+        let next_join = ring_join(circles[at(i + 1)], tan, next_tan);
         let (p_in, p_out, arc) = join;
         let tangent = Seg::Line(p_out, next_join.0);
         f(if let Some(a) = arc {
@@ -286,7 +308,7 @@ pub fn stroke_spans(
 }
 
 /// Stroke one span: each segment's start, and an arc's chords.
-fn stroke_span(span: &Span, tol: f64, pts: &mut Vec<Pt>) {
+pub fn stroke_span(span: &Span, tol: f64, pts: &mut Vec<Pt>) {
     for seg in span {
         match *seg {
             Seg::Line(a, _) => pts.push(a),

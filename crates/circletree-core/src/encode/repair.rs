@@ -13,7 +13,7 @@ use crate::geometry::{dist2_to_segment, signed_area, Pt, Shape};
 use crate::grid::Grid;
 use crate::metrics::{segment_max, Capsules};
 use crate::parallel;
-use crate::reconstruct::{for_each_span, stroke_spans};
+use crate::reconstruct::{for_each_span, for_each_span_in, stroke_span, stroke_spans, Span};
 use crate::validity::{point_in_ring, problems_where, RingRef, Touches};
 use rstar::primitives::Line;
 use rstar::RTree;
@@ -33,6 +33,9 @@ pub(super) struct RingState {
     spans: crate::reconstruct::Spans,
     /// Spans whose stroke may differ from the last check.
     dirty: Vec<bool>,
+    /// The stroke of a long ring's second half while it is rebuilt on a thread of its own.
+    recon_b: Vec<Pt>,
+    span_of_b: Vec<u32>,
 }
 
 /// Spans within this many of a touched circle are checked again. A span depends on the circles
@@ -282,6 +285,68 @@ fn dirty_spans(entries: &[Entry]) -> Vec<bool> {
     dirty
 }
 
+/// A ring's spans and their stroke with repeated points dropped, as the decoder does, from its
+/// circles `fc` in their own coordinates. A long ring is rebuilt in two halves side
+/// by side (spans depend on their circles alone, so the same spans; repeats are dropped in each
+/// half and where they meet, so the same stroke).
+fn rebuild(st: &mut RingState, fc: &[[f64; 3]], tol: f64, interrupt: &mut dyn FnMut()) {
+    let m = fc.len();
+    if m < 2 {
+        // one circle: a whole circle, no tangent
+        st.spans.clear();
+        for_each_span(fc, |s| st.spans.push(s));
+        stroke_dedup(&st.spans, tol, &mut st.recon, &mut st.span_of);
+        return;
+    }
+    let half = m / 2;
+    st.spans.resize(m, Span::default());
+    let (first, second) = st.spans.split_at_mut(half);
+    let (pts, ids) = (&mut st.recon, &mut st.span_of);
+    let (pts_b, ids_b) = (&mut st.recon_b, &mut st.span_of_b);
+    parallel::join(
+        m as u64 >= REBUILD_APART,
+        interrupt,
+        |_| rebuild_part(fc, 0, first, tol, pts, ids),
+        |_| rebuild_part(fc, half, second, tol, pts_b, ids_b),
+    );
+    // the second half's first point repeating the first half's last
+    let skip = usize::from(!pts.is_empty() && pts_b.first() == pts.last());
+    pts.extend_from_slice(&pts_b[skip.min(pts_b.len())..]);
+    ids.extend_from_slice(&ids_b[skip.min(ids_b.len())..]);
+    while pts.len() > 1 && pts.first() == pts.last() {
+        pts.pop();
+        ids.pop();
+    }
+}
+
+/// Spans `from..from + out.len()` of the ring of circles `fc` into `out`, stroked into `pts`
+/// with their span numbers in `ids`, consecutive repeats dropped.
+fn rebuild_part(
+    fc: &[[f64; 3]],
+    from: usize,
+    out: &mut [Span],
+    tol: f64,
+    pts: &mut Vec<Pt>,
+    ids: &mut Vec<u32>,
+) {
+    let mut k = 0;
+    for_each_span_in(fc, from..from + out.len(), |s| {
+        out[k] = s;
+        k += 1;
+    });
+    pts.clear();
+    ids.clear();
+    for (k, span) in out.iter().enumerate() {
+        let start = pts.len();
+        stroke_span(span, tol, pts);
+        ids.resize(ids.len() + pts.len() - start, (from + k) as u32);
+    }
+    dedup_runs(pts, ids);
+}
+
+/// A ring is rebuilt in two halves side by side from this many circles.
+const REBUILD_APART: u64 = 20_000;
+
 /// Stroke spans and drop repeated points, as the decoder does, keeping each point's span: into
 /// `pts` and `ids`, whose allocations are reused (a round rebuilds every changed ring, and a
 /// fresh vector of a large ring is page faults).
@@ -310,6 +375,15 @@ fn points_dedup(circles: &[[f64; 3]], pts: &mut Vec<Pt>, ids: &mut Vec<u32>) {
 
 /// Drop consecutive repeated points (and the closing repeats of the first), with their spans.
 fn dedup(pts: &mut Vec<Pt>, ids: &mut Vec<u32>) {
+    dedup_runs(pts, ids);
+    while pts.len() > 1 && pts.first() == pts.last() {
+        pts.pop();
+        ids.pop();
+    }
+}
+
+/// Consecutive repeated points dropped (each point's span with it).
+fn dedup_runs(pts: &mut Vec<Pt>, ids: &mut Vec<u32>) {
     let mut kept = 0;
     for i in 0..pts.len() {
         if kept == 0 || pts[kept - 1] != pts[i] {
@@ -320,10 +394,6 @@ fn dedup(pts: &mut Vec<Pt>, ids: &mut Vec<u32>) {
     }
     pts.truncate(kept);
     ids.truncate(kept);
-    while pts.len() > 1 && pts.first() == pts.last() {
-        pts.pop();
-        ids.pop();
-    }
 }
 
 pub(super) enum Outcome {
@@ -398,6 +468,8 @@ pub(super) fn initial_rings(
                     circles: vec![],
                     recon: vec![],
                     span_of: vec![],
+                    recon_b: vec![],
+                    span_of_b: vec![],
                     starts: vec![],
                     spans: vec![],
                     dirty: vec![],
@@ -477,9 +549,7 @@ pub(super) fn verify_and_repair(
                 .map(|c| [unq(c.x), unq(c.y), unq(c.r)])
                 .collect();
             if arcs {
-                st.spans.clear();
-                for_each_span(&fc, |s| st.spans.push(s));
-                stroke_dedup(&st.spans, g, &mut st.recon, &mut st.span_of);
+                rebuild(st, &fc, g, interrupt);
             } else {
                 st.spans = Vec::new();
                 points_dedup(&fc, &mut st.recon, &mut st.span_of);
@@ -793,4 +863,52 @@ fn repair(st: &mut RingState, spans: &[usize], target: f64, hurry: bool) -> bool
     let changed = removed > 0 || next.len() != before;
     st.entries = next;
     changed
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_ring_rebuilt_in_halves_is_the_ring_rebuilt_whole() {
+        // circles and points, with repeated points where the halves meet (spans 3 and 4 stroke
+        // the same point) and where the ring closes (the last circle is the first)
+        let mut fc: Vec<[f64; 3]> = vec![
+            [0.0, 0.0, 0.0],
+            [10.0, 0.0, 2.0],
+            [20.0, 0.0, 0.0],
+            [25.0, 5.0, 0.0],
+            [25.0, 5.0, 0.0],
+            [20.0, 10.0, -1.5],
+            [10.0, 12.0, 0.0],
+            [0.0, 0.0, 0.0],
+        ];
+        for m in [2, 3, 8, 9] {
+            if m == 9 {
+                fc.insert(2, [15.0, -3.0, 1.0]);
+            }
+            let fc = &fc[..m];
+            let mut whole = Vec::new();
+            for_each_span(fc, |s| whole.push(s));
+            let (mut pts, mut ids) = (Vec::new(), Vec::new());
+            stroke_dedup(&whole, 0.1, &mut pts, &mut ids);
+            let mut st = RingState {
+                pts: vec![],
+                part: 0,
+                index: 0,
+                entries: vec![],
+                circles: vec![],
+                recon: vec![[1.0, 1.0]],
+                span_of: vec![7],
+                starts: vec![],
+                spans: vec![Span::default(); 11],
+                dirty: vec![],
+                recon_b: vec![],
+                span_of_b: vec![],
+            };
+            rebuild(&mut st, fc, 0.1, &mut || {});
+            assert_eq!(st.spans, whole, "{m}");
+            assert_eq!((&st.recon, &st.span_of), (&pts, &ids), "{m}");
+        }
+    }
 }
