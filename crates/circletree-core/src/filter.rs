@@ -319,7 +319,7 @@ pub fn map_runs(
     min_radius: f64,
     tol: f64,
     interrupt: &mut dyn FnMut(),
-) -> Vec<Mapped> {
+) -> Runs {
     let n = ring.len();
     // Nearly identical circles (cocircular vertices give many) would map the same long runs again
     // and again: keep one per cell of a quarter of the tolerance in centre and radius.
@@ -363,12 +363,11 @@ pub fn map_runs(
                 )
             },
         );
-        if let (Some(mut a), Some(b)) = (a, b) {
-            a.extend(b);
-            return a;
+        if let (Some(a), Some(b)) = (a, b) {
+            return Runs([a, b]);
         }
     }
-    map_list(
+    let all = map_list(
         ring,
         &cands,
         min_radius,
@@ -376,7 +375,39 @@ pub fn map_runs(
         Budget::Skip(budget),
         interrupt,
     )
-    .unwrap_or_default()
+    .unwrap_or_default();
+    Runs([all, Vec::new()])
+}
+
+/// The runs [`map_runs`] found: one list, then another (a large ring's candidates are mapped in
+/// two halves; put together, a hundred megabytes at a million vertices, they were copied for
+/// nothing: [`select`] reads them where they are).
+#[derive(Clone, Debug, Default)]
+pub struct Runs([Vec<Mapped>; 2]);
+
+impl Runs {
+    /// Every run, the first list's then the second's.
+    pub fn iter(&self) -> impl Iterator<Item = &Mapped> {
+        self.0[0].iter().chain(&self.0[1])
+    }
+
+    pub fn len(&self) -> usize {
+        self.0[0].len() + self.0[1].len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Run `i` of [`Runs::iter`]'s order.
+    fn get(&self, i: usize) -> &Mapped {
+        let first = &self.0[0];
+        if i < first.len() {
+            &first[i]
+        } else {
+            &self.0[1][i - first.len()]
+        }
+    }
 }
 
 /// How [`map_list`] spends its budget of edges walked.
@@ -492,7 +523,7 @@ const WORK_FLOOR: usize = 1 << 22;
 const INTERRUPT_WORK: usize = 1 << 18;
 
 /// Steps 3-4: choose the runs that cover the ring, longest first, within the overlap allowance.
-pub fn select(n: usize, runs: Vec<Mapped>, overlap: f64) -> Vec<Mapped> {
+pub fn select(n: usize, runs: Runs, overlap: f64) -> Vec<Mapped> {
     // Longest first, then smallest radius, then in their order: sorted as one packed integer a
     // run (the same order as a stable sort of the runs by length and radius, and several times
     // quicker than moving the runs themselves; `|r|`'s bits order as it does).
@@ -506,10 +537,12 @@ pub fn select(n: usize, runs: Vec<Mapped>, overlap: f64) -> Vec<Mapped> {
                 (u128::from(!len) << 96) | (u128::from(m.r.abs().to_bits()) << 32) | i as u128
             };
             let sorted = |from: usize, to: usize| {
-                let mut keys: Vec<u128> = (from..to).map(|i| key(i, &runs[i])).collect();
+                let mut keys: Vec<u128> = (from..to).map(|i| key(i, runs.get(i))).collect();
                 keys.sort_unstable();
-                let ordered: Vec<Mapped> =
-                    keys.iter().map(|&k| runs[(k as u32) as usize]).collect();
+                let ordered: Vec<Mapped> = keys
+                    .iter()
+                    .map(|&k| *runs.get((k as u32) as usize))
+                    .collect();
                 (keys, ordered)
             };
             let half = runs.len() / 2;
@@ -521,7 +554,7 @@ pub fn select(n: usize, runs: Vec<Mapped>, overlap: f64) -> Vec<Mapped> {
             )
         }
         Err(_) => {
-            let mut runs = runs;
+            let mut runs: Vec<Mapped> = runs.iter().copied().collect();
             runs.sort_by(|a, b| b.len.cmp(&a.len).then(a.r.abs().total_cmp(&b.r.abs())));
             ((Vec::new(), runs), (Vec::new(), Vec::new()))
         }
@@ -744,6 +777,28 @@ mod tests {
     use proptest::prelude::*;
 
     /// [`Merged`] takes two key-sorted lists in the order one sort of both gives.
+    #[test]
+    fn runs_in_two_lists_are_selected_as_one() {
+        let ring = buffer_disc(1.0e4, 3000);
+        let mut wavy = ring.clone();
+        for (i, p) in wavy.iter_mut().enumerate() {
+            let f = 1.0 + 0.05 * (i as f64 * 0.05).sin();
+            *p = [p[0] * f, p[1] * f];
+        }
+        let c = candidates(&wavy, &mut || {});
+        let all: Vec<Mapped> = map_runs(&wavy, &c, 5.0, 1.0, &mut || {})
+            .iter()
+            .copied()
+            .collect();
+        assert!(all.len() > 100, "{}", all.len());
+        let one = select(wavy.len(), Runs([all.clone(), Vec::new()]), 0.4);
+        for cut in [1, all.len() / 3, all.len() - 1] {
+            let two = Runs([all[..cut].to_vec(), all[cut..].to_vec()]);
+            assert_eq!(two.iter().copied().collect::<Vec<_>>(), all);
+            assert_eq!(select(wavy.len(), two, 0.4), one, "{cut}");
+        }
+    }
+
     #[test]
     fn merged_halves_are_one_order() {
         let mut next = crate::test_uniform(5);
