@@ -31,7 +31,7 @@ fn steps(c: &mut Criterion) {
             b.iter(|| filter::map_runs(black_box(&ring), &cands, 5.0, 5.0, &mut || {}))
         });
         g.bench_function(BenchmarkId::new("2 filter select", ""), |b| {
-            b.iter(|| filter::select(ring.len(), black_box(runs.clone()), 0.4))
+            b.iter(|| filter::select(ring.len(), black_box(runs.clone()), 0.4, &mut || {}))
         });
         g.bench_function(BenchmarkId::new("3 douglas_peucker", ""), |b| {
             b.iter(|| douglas_peucker::keep(black_box(&ring), 10.0))

@@ -54,7 +54,7 @@ pub(super) fn initial_entries(
         );
         let runs = filter::map_runs(ring, &cands, opts.min_radius, max_error / 2.0, interrupt);
         interrupt();
-        (filter::select(n, runs, opts.overlap), dp_points)
+        (filter::select(n, runs, opts.overlap, interrupt), dp_points)
     } else {
         (Vec::new(), None)
     };
