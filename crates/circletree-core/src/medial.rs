@@ -3,10 +3,11 @@
 //! ring's points. A triangle on the polygon's side of the ring gives a positive radius (internal
 //! circle), one on the other side a negative radius (external circle, section 3.4).
 //!
-//! The ring's edges are edges of the triangulation (those Delaunay's lacks are added as constraints),
-//! so every triangle lies wholly on one side: a triangle with a ring edge knows its side from the
-//! edge's direction, the others inherit it by flood fill across the other edges. Coordinates are moved to a local origin first (circumcentres of UTM-sized
-//! coordinates lose digits). Cost: O(n log n).
+//! The ring's edges are edges of the triangulation (those Delaunay's lacks are added as
+//! constraints), so every triangle lies wholly on one side: a triangle with a ring edge knows its
+//! side from the edge's direction, the others take it from their neighbours across the other
+//! edges. Coordinates are moved to a local origin first (circumcentres of UTM-sized coordinates
+//! lose digits). Cost: O(n log n).
 
 use crate::geometry::Pt;
 use spade::handles::FixedVertexHandle;
@@ -105,9 +106,9 @@ pub fn candidates(ring: &[Pt], interrupt: &mut dyn FnMut()) -> Vec<Candidate> {
                 return vec![];
             }
         }
-        // An added edge that crossed a ring edge not marked (the ring crosses itself) flipped it
-        // away; one that passed through a vertex was split there (the ring touches itself):
-        // either way a ring edge is then no edge of the triangulation.
+        // An added edge that crossed a ring edge (no constraint itself: the ring crosses
+        // itself) flipped it away; one that passed through a vertex was split there (the ring
+        // touches itself): either way a ring edge is then no edge of the triangulation.
         missing.clear();
         side = seed_sides(&cdt, &handles, &mut missing);
         if !missing.is_empty() {

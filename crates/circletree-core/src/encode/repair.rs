@@ -311,8 +311,8 @@ fn rebuild(st: &mut RingState, fc: &[[f64; 3]], tol: f64, interrupt: &mut dyn Fn
     );
     // the second half's first point repeating the first half's last
     let skip = usize::from(!pts.is_empty() && pts_b.first() == pts.last());
-    pts.extend_from_slice(&pts_b[skip.min(pts_b.len())..]);
-    ids.extend_from_slice(&ids_b[skip.min(ids_b.len())..]);
+    pts.extend_from_slice(&pts_b[skip..]);
+    ids.extend_from_slice(&ids_b[skip..]);
     while pts.len() > 1 && pts.first() == pts.last() {
         pts.pop();
         ids.pop();
