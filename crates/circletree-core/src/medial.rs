@@ -117,53 +117,89 @@ pub fn candidates(ring: &[Pt], interrupt: &mut dyn FnMut()) -> Vec<Candidate> {
     }
     interrupt();
     // The other faces' sides and the circumcircles need nothing of each other: on a large ring
-    // they are found side by side, the thread that fills the sides taking fewer circumcircles
-    // (filling is about a third of their cost).
-    let faces = cdt.all_faces().len();
-    let split = 1 + (faces - 1) * 3 / 8;
-    let (mut circles, rest) = crate::parallel::join(
+    // they are found side by side, the thread that fills the sides taking fewer vertices
+    // (filling is about a third of the circumcircles' cost). Each face is visited from its
+    // lowest vertex, so the candidates come in the order of their vertices as they are found
+    // (sorting them afterwards, by scattering, was a copy of a hundred megabytes a million
+    // vertices and half as long as finding them).
+    let split = n * 3 / 8;
+    let ((mut out, mut faces), (rest, rest_faces)) = crate::parallel::join(
         n as u64 >= crate::parallel::MIN_VERTICES,
         interrupt,
         |i| {
             fill_sides(&cdt, &mut side);
-            circumcircles(&cdt, 1..split, i)
+            circles_from(&cdt, &handles, o, 0..split, cdt.num_inner_faces(), i)
         },
-        |i| circumcircles(&cdt, split..faces, i),
+        |i| circles_from(&cdt, &handles, o, split..n, 2 * (n - split) + 64, i),
     );
-    // (the order of the faces is not the candidates': they are sorted by their vertices below)
-    circles.extend(rest);
-    // The faces with a side, in order of their vertices: by the lowest (a counting sort, placed
-    // straight from the faces), then the other two.
-    let mut start = vec![0usize; n + 1];
-    for &(f, _, _, verts) in &circles {
-        if side[f] != UNSET {
-            start[verts[0] + 1] += 1;
+    out.extend(rest);
+    faces.extend(rest_faces);
+    // each circle's side (none for a face no ring edge reaches)
+    let mut unset = false;
+    for (cand, &f) in out.iter_mut().zip(&faces) {
+        match side[f as usize] {
+            INSIDE => {}
+            OUTSIDE => cand.r = -cand.r,
+            _ => unset = true,
         }
     }
-    for v in 0..n {
-        start[v + 1] += start[v];
-    }
-    let unset = Candidate {
-        c: [0.0; 2],
-        r: 0.0,
-        verts: [0; 3],
-    };
-    let mut out = vec![unset; start[n]];
-    let mut next = start.clone();
-    for (f, c, r, verts) in circles {
-        if side[f] != UNSET {
-            out[next[verts[0]]] = Candidate {
-                c: [c[0] + o[0], c[1] + o[1]],
-                r: if side[f] == INSIDE { r } else { -r },
-                verts,
-            };
-            next[verts[0]] += 1;
-        }
-    }
-    for v in 0..n {
-        out[start[v]..start[v + 1]].sort_unstable_by_key(|c| c.verts);
+    if unset {
+        let mut k = 0;
+        out.retain(|_| {
+            k += 1;
+            side[faces[k - 1] as usize] != UNSET
+        });
     }
     out
+}
+
+/// The circumcircles (centre, moved back from the local origin `o`; radius; vertices from the
+/// lowest) of the inner faces whose lowest vertex is one of the ring vertices `vertices`, in the
+/// order of their vertices, with their face indices; `capacity`: about how many there will be.
+fn circles_from(
+    cdt: &Ring,
+    handles: &[FixedVertexHandle],
+    o: Pt,
+    vertices: std::ops::Range<usize>,
+    capacity: usize,
+    interrupt: &mut dyn FnMut(),
+) -> (Vec<Candidate>, Vec<u32>) {
+    let mut out = Vec::with_capacity(capacity);
+    let mut faces = Vec::with_capacity(capacity);
+    let mut here: Vec<(Candidate, u32)> = Vec::new();
+    for v in vertices.clone() {
+        if (v - vertices.start).is_multiple_of(4096) {
+            interrupt();
+        }
+        here.clear();
+        for e in cdt.vertex(handles[v]).out_edges() {
+            let Some(face) = e.face().as_inner() else {
+                continue;
+            };
+            // the face's other two vertices, seen from `v`
+            if e.to().data().i < v || e.next().to().data().i < v {
+                continue;
+            }
+            // the vertices read once, in the face's own order (the circle's bits depend on it)
+            let vs = face.vertices().map(|v| *v.data());
+            let (c, r2) = circumcircle(vs.map(|v| v.p));
+            if !(r2.is_finite() && c[0].is_finite() && c[1].is_finite()) || r2 <= 0.0 {
+                continue;
+            }
+            let cand = Candidate {
+                c: [c[0] + o[0], c[1] + o[1]],
+                r: r2.sqrt(),
+                verts: first_lowest(vs.map(|v| v.i)),
+            };
+            here.push((cand, face.fix().index() as u32));
+        }
+        here.sort_unstable_by_key(|h| h.0.verts);
+        for &(cand, f) in &here {
+            out.push(cand);
+            faces.push(f);
+        }
+    }
+    (out, faces)
 }
 
 /// A triangulation of one ring: its constraints are the ring edges Delaunay's lacked.
@@ -234,33 +270,6 @@ fn fill_sides(cdt: &Ring, side: &mut [u8]) {
             side[f] = side[root(&mut parent, f as u32) as usize];
         }
     }
-}
-
-/// Each inner face's circumcircle, where it has one: face index, centre (local coordinates),
-/// radius and vertices from the lowest.
-#[allow(clippy::type_complexity)]
-fn circumcircles(
-    cdt: &Ring,
-    faces: std::ops::Range<usize>,
-    interrupt: &mut dyn FnMut(),
-) -> Vec<(usize, Pt, f64, [usize; 3])> {
-    let mut out = Vec::with_capacity(faces.len());
-    // inner faces are numbered from 1 (0 is the outer face)
-    let inner = cdt.inner_faces().skip(faces.start - 1).take(faces.len());
-    for (k, face) in inner.enumerate() {
-        if k % 4096 == 0 {
-            interrupt();
-        }
-        let f = face.fix().index();
-        // the vertices read once, for the positions and the indices alike
-        let vs = face.vertices().map(|v| *v.data());
-        let (c, r2) = circumcircle(vs.map(|v| v.p));
-        if !(r2.is_finite() && c[0].is_finite() && c[1].is_finite()) || r2 <= 0.0 {
-            continue;
-        }
-        out.push((f, c, r2.sqrt(), first_lowest(vs.map(|v| v.i))));
-    }
-    out
 }
 
 /// The circumcircle's centre and squared radius of a triangle: spade's own formula
