@@ -17,6 +17,7 @@ use crate::reconstruct::{for_each_span, for_each_span_in, stroke_span, stroke_sp
 use crate::validity::{point_in_ring, problems_where, RingRef, Touches};
 use rstar::primitives::Line;
 use rstar::RTree;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 pub(super) struct RingState {
     pts: Vec<Pt>,
@@ -47,10 +48,6 @@ const DIRTY_REACH: usize = WINDOW + 2;
 /// whose vertices round to the same grid point leave a span with no stroke of its own, and its
 /// neighbour's stroke then reaches across it.
 const WINDOW: usize = 2;
-
-/// The true arcs are checked beside the distances when fewer than one span in this many is to
-/// be measured again.
-const FEW_DIRTY: usize = 16;
 
 /// Above this many target segments a window is searched through an R-tree, not by brute force.
 const BRUTE_FORCE_LIMIT: usize = 96;
@@ -570,37 +567,31 @@ pub(super) fn verify_and_repair(
         // else: on a large input they run side by side.
         let segments: usize = rings.iter().map(|r| r.recon.len()).sum();
         let rings_ref = &rings;
-        // Three checks on two threads: the stroke's validity on one, the distances and the
-        // true arcs' validity on the other once few spans are left to measure (the later
-        // rounds, where the distances take a millisecond), else the arcs after the stroke.
-        let dirty: usize = rings
-            .iter()
-            .map(|r| r.dirty.iter().filter(|&&d| d).count())
-            .sum();
-        let spans: usize = rings.iter().map(|r| r.m()).sum();
-        let arcs_beside = dirty * FEW_DIRTY < spans;
-        let ((mut failing, arc_found), (mut problems, mut problem_at)) = parallel::join(
+        // Three checks on two threads: the true arcs' validity on one, the stroke's on the
+        // other, and the distances shared between them, a chunk of spans at a time, by whichever
+        // is free (each span is measured alone; each ring's failing spans are sorted below).
+        let chunks = distance_chunks(rings_ref);
+        let next = AtomicUsize::new(0);
+        let measure = |i: &mut dyn FnMut()| {
+            distance_failures(ctx, rings_ref, &chunks, &next, max_error, g, target, i)
+        };
+        let ((arc_found, far_a), ((mut problems, mut problem_at), far_b)) = parallel::join(
             segments as u64 >= crate::parallel::MIN_VERTICES,
             interrupt,
             |i| {
-                let failing = distance_failures(ctx, rings_ref, max_error, g, target, i);
-                (failing, arcs_beside.then(|| arc_failures(rings_ref, g, i)))
+                let found = arc_failures(rings_ref, g, i);
+                (found, measure(i))
             },
             |i| {
-                let (mut found, mut at) = stroke_failures(ctx, rings_ref, i);
-                if !arcs_beside {
-                    let (more, arc_at) = arc_failures(rings_ref, g, i);
-                    found.extend(more);
-                    at = at.or(arc_at);
-                }
-                (found, at)
+                let found = stroke_failures(ctx, rings_ref, i);
+                (found, measure(i))
             },
         );
-        if let Some((more, arc_at)) = arc_found {
-            problems.extend(more);
-            problem_at = problem_at.or(arc_at);
-        }
-        for (k, s) in problems {
+        let (more, arc_at) = arc_found;
+        problems.extend(more);
+        problem_at = problem_at.or(arc_at);
+        let mut failing: Vec<Vec<usize>> = vec![Vec::new(); rings.len()];
+        for (k, s) in far_a.into_iter().chain(far_b).chain(problems) {
             failing[k].push(s);
         }
         if failing.iter().all(Vec::is_empty) {
@@ -631,35 +622,58 @@ pub(super) fn verify_and_repair(
     }
 }
 
-/// Spans of each ring whose Hausdorff distance, both ways, is not proved within the bound.
+/// The distance checks' work: (ring, spans) to measure, a ring's spans cut in chunks of
+/// [`DISTANCE_CHUNK`] (rings with no dirty span left out).
+fn distance_chunks(rings: &[RingState]) -> Vec<(usize, std::ops::Range<usize>)> {
+    let mut chunks = Vec::new();
+    for (k, st) in rings.iter().enumerate() {
+        if !st.dirty.iter().any(|&d| d) {
+            continue;
+        }
+        let m = st.m();
+        chunks.extend(
+            (0..m)
+                .step_by(DISTANCE_CHUNK)
+                .map(|s| (k, s..(s + DISTANCE_CHUNK).min(m))),
+        );
+    }
+    chunks
+}
+
+/// Spans a thread measures at a time.
+const DISTANCE_CHUNK: usize = 1024;
+
+/// Spans (ring, span) whose Hausdorff distance, both ways, is not proved within the bound: of
+/// the `chunks` this thread takes (the next one not taken, by `next`, until none is left).
+#[allow(clippy::too_many_arguments)]
 fn distance_failures(
     ctx: &Context,
     rings: &[RingState],
+    chunks: &[(usize, std::ops::Range<usize>)],
+    next: &AtomicUsize,
     max_error: f64,
     g: f64,
     target: f64,
     interrupt: &mut dyn FnMut(),
-) -> Vec<Vec<usize>> {
-    let mut failing: Vec<Vec<usize>> = vec![Vec::new(); rings.len()];
-    for (k, st) in rings.iter().enumerate() {
+) -> Vec<(usize, usize)> {
+    let mut failing = Vec::new();
+    // Hausdorff, both ways, span by span. Where the window holds only straight spans, the
+    // stroke is the geometry itself and the whole bound is available (arcs keep a grid step of
+    // it for the decoder's stroke).
+    let eps = g * 1e-3;
+    let mut scratch = Scratch::default();
+    let straight_target = max_error - 3.0 * eps;
+    while let Some((k, spans)) = chunks.get(next.fetch_add(1, Ordering::Relaxed)) {
         interrupt();
-        if !st.dirty.iter().any(|&d| d) {
-            continue;
-        }
-        // Hausdorff, both ways, span by span. Where the window holds only straight spans,
-        // the stroke is the geometry itself and the whole bound is available (arcs keep a
-        // grid step of it for the decoder's stroke).
-        let eps = g * 1e-3;
-        let mut scratch = Scratch::default();
-        let straight_target = max_error - 3.0 * eps;
-        for s in 0..st.m() {
+        let st = &rings[*k];
+        for s in spans.clone() {
             let t = if !ctx.circles && st.straight_window(s) {
                 straight_target
             } else {
                 target
             };
             if st.dirty[s] && !st.span_fits(s, t, eps, &mut scratch) {
-                failing[k].push(s);
+                failing.push((*k, s));
             }
         }
     }
