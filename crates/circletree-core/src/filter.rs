@@ -16,6 +16,7 @@
 //! candidates and runs of k edges, with a hashed grid of the kept circles.
 
 use crate::geometry::{dist, Pt};
+use crate::grid::round_i64;
 use crate::medial::Candidate;
 use std::hash::BuildHasher;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -240,9 +241,9 @@ fn distinct<'a>(
 ) -> Vec<&'a Candidate> {
     let key = |cand: &Candidate| {
         (
-            (cand.c[0] / cell).round() as i64,
-            (cand.c[1] / cell).round() as i64,
-            (cand.r / cell).round() as i64,
+            round_i64(cand.c[0] / cell),
+            round_i64(cand.c[1] / cell),
+            round_i64(cand.r / cell),
         )
     };
     // Fx's hash mixed once more (splitmix64's finalizer), so that its top bit (which thread)
