@@ -60,13 +60,18 @@ fn main() {
             encode(&wkb, 32760, &opts, &mut || {})
         }
         .expect("encode");
+        let secs = t.elapsed().as_secs_f64();
+        let bytes = ct.to_bytes();
+        // FNV-1a of the stored bytes: two builds' values compared exactly, not by size
+        let fnv = bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &x| {
+            (h ^ u64::from(x)).wrapping_mul(0x0100_0000_01b3)
+        });
         println!(
-            "n={n:8} time={:.3}s circles={} repaired={} rounds={} bytes={} wkb={}",
-            t.elapsed().as_secs_f64(),
+            "n={n:8} time={secs:.3}s circles={} repaired={} rounds={} bytes={} wkb={} fnv={fnv:016x}",
             ct.ncircles(),
             ct.repaired,
             rep.rounds,
-            ct.to_bytes().len(),
+            bytes.len(),
             wkb.len()
         );
     }
