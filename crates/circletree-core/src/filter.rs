@@ -617,17 +617,21 @@ pub fn select(n: usize, runs: Runs, overlap: f64, interrupt: &mut dyn FnMut()) -
         // in order, wrapping, without a division for each)
         let owners_clash = |first: usize, count: usize| {
             let mut last = NONE;
-            owner[first..]
+            // (a loop over two slices: a chained, taken iterator was a call an edge)
+            let to = (first + count).min(n);
+            for &o in owner[first..to]
                 .iter()
-                .chain(&owner[..first])
-                .take(count)
-                .any(|&o| {
-                    if o == NONE || o == last {
-                        return false;
-                    }
-                    last = o;
-                    clashes(&kept[o as usize])
-                })
+                .chain(&owner[..count - (to - first)])
+            {
+                if o == NONE || o == last {
+                    continue;
+                }
+                last = o;
+                if clashes(&kept[o as usize]) {
+                    return true;
+                }
+            }
+            false
         };
         // The kept circles of the edges this run shares or touches clash most often, then those
         // of the edges up to a run's length (at least [`NEARBY`]) either side: asked first,
