@@ -62,12 +62,11 @@ pub fn candidates(ring: &[Pt], interrupt: &mut dyn FnMut()) -> Vec<Candidate> {
     // points all lie far from their mean, the centre spade's bulk load sweeps from, and its hull
     // work made that twice as slow as this (a million vertices: 0.63 s against 1.35 s, the same
     // triangles).
-    let mut order: Vec<(u8, u32)> = (0..n).map(|i| (insertion_level(i), i as u32)).collect();
-    order.sort_unstable_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
+    let order = insertion_order(n);
     let mut cdt = Ring::with_capacity(n, 3 * n, 2 * n);
     let mut handles = vec![FixedVertexHandle::from_index(0); n];
     let mut last = None;
-    for (k, &(_, i)) in order.iter().enumerate() {
+    for (k, &i) in order.iter().enumerate() {
         if k % 4096 == 0 {
             interrupt();
         }
@@ -288,13 +287,38 @@ fn circumcircle(p: [Point2<f64>; 3]) -> (Pt, f64) {
 
 /// The round vertex `i` is inserted in (see [`candidates`]): the trailing zeros of a hash of
 /// `i`, at most 24.
+/// The ring's vertices in the order they are inserted: by [`insertion_level`], highest first,
+/// each level's in ring order (a counting sort: a few levels, so two passes instead of sorting a
+/// million pairs).
+fn insertion_order(n: usize) -> Vec<u32> {
+    let levels: Vec<u8> = (0..n).map(insertion_level).collect();
+    // where each level's vertices start, the highest level first
+    let mut start = [0usize; MAX_LEVEL as usize + 2];
+    for &l in &levels {
+        start[(MAX_LEVEL - l) as usize + 1] += 1;
+    }
+    for k in 1..start.len() {
+        start[k] += start[k - 1];
+    }
+    let mut order = vec![0u32; n];
+    for (i, &l) in levels.iter().enumerate() {
+        let at = &mut start[(MAX_LEVEL - l) as usize];
+        order[*at] = i as u32;
+        *at += 1;
+    }
+    order
+}
+
+/// The highest [`insertion_level`].
+const MAX_LEVEL: u8 = 24;
+
 fn insertion_level(i: usize) -> u8 {
     // splitmix64's finalizer
     let mut z = (i as u64).wrapping_add(0x9E37_79B9_7F4A_7C15);
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
     z ^= z >> 31;
-    z.trailing_zeros().min(24) as u8
+    z.trailing_zeros().min(u32::from(MAX_LEVEL)) as u8
 }
 
 /// A triangle's vertices (counter-clockwise) from the lowest index on, so that a triangle is
@@ -312,6 +336,23 @@ fn first_lowest(v: [usize; 3]) -> [usize; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The counting sort puts the vertices in the order of sorting them by level, highest
+    /// first, then by index: on rings small and large enough to hold many levels (it fails
+    /// when the levels go lowest first or a level's vertices leave ring order).
+    #[test]
+    fn insertion_order_is_by_level_then_ring_order() {
+        for n in [0, 1, 2, 3, 17, 1000, 70_000] {
+            let mut sorted: Vec<(u8, u32)> =
+                (0..n).map(|i| (insertion_level(i), i as u32)).collect();
+            sorted.sort_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
+            let sorted: Vec<u32> = sorted.into_iter().map(|x| x.1).collect();
+            assert_eq!(insertion_order(n), sorted, "n = {n}");
+        }
+        // the levels this checks are many, not one
+        let top = (0..70_000).map(insertion_level).max().unwrap();
+        assert!(top >= 10, "{top}");
+    }
 
     #[test]
     fn square_gives_one_internal_circle_per_triangle() {
