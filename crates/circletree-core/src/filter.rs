@@ -234,14 +234,20 @@ fn sweep(cross: f64, dot: f64) -> f64 {
     cross.atan2(dot).abs()
 }
 
-/// The candidates at least `min_radius` in radius, the first of each cell of `cell` in centre and
-/// radius, in their order.
+/// The candidates (two lists, one after the other) at least `min_radius` in radius, the first of
+/// each cell of `cell` in centre and radius, in their order.
 fn distinct<'a>(
-    cands: &'a [Candidate],
+    lists: [&'a [Candidate]; 2],
     min_radius: f64,
     cell: f64,
     interrupt: &mut dyn FnMut(),
 ) -> Vec<&'a Candidate> {
+    let total = lists[0].len() + lists[1].len();
+    let cand_at = |i: usize| match i.checked_sub(lists[0].len()) {
+        None => &lists[0][i],
+        Some(j) => &lists[1][j],
+    };
+    let all = || lists[0].iter().chain(lists[1]);
     let key = |cand: &Candidate| {
         (
             round_i64(cand.c[0] / cell),
@@ -261,12 +267,12 @@ fn distinct<'a>(
     // candidate): the candidates are spread over lists by their hash first, each list with a
     // table of its own that fits, and on a large ring the lists of either half of the hashes on
     // a thread of their own. A cell's candidates share a hash, so they meet in one list, in order.
-    let lists = (cands.len() / DISTINCT_LIST).next_power_of_two().min(64);
+    let spreads = (total / DISTINCT_LIST).next_power_of_two().min(64);
     let firsts = |half: Option<u64>| -> Vec<usize> {
         // (hash, index): a list is read in order, and a candidate itself only where two hashes
         // are equal (on a large ring, a list's candidates are pages apart)
-        let mut spread: Vec<Vec<(u64, usize)>> = vec![Vec::new(); lists];
-        for (i, cand) in cands.iter().enumerate() {
+        let mut spread: Vec<Vec<(u64, usize)>> = vec![Vec::new(); spreads];
+        for (i, cand) in all().enumerate() {
             if cand.r.abs() < min_radius {
                 continue;
             }
@@ -274,7 +280,7 @@ fn distinct<'a>(
             if half.is_some_and(|half| h >> 63 != half) {
                 continue;
             }
-            spread[(h >> 40) as usize % lists].push((h, i));
+            spread[(h >> 40) as usize % spreads].push((h, i));
         }
         let mut out = Vec::new();
         let mut table: hashbrown::HashTable<usize> = hashbrown::HashTable::new();
@@ -282,7 +288,8 @@ fn distinct<'a>(
             table.clear();
             table.reserve(list.len(), |&p| list[p].0);
             for (p, &(h, i)) in list.iter().enumerate() {
-                let same = |&q: &usize| list[q].0 == h && key(&cands[list[q].1]) == key(&cands[i]);
+                let same =
+                    |&q: &usize| list[q].0 == h && key(cand_at(list[q].1)) == key(cand_at(i));
                 if let hashbrown::hash_table::Entry::Vacant(v) =
                     table.entry(h, same, |&q| list[q].0)
                 {
@@ -293,21 +300,20 @@ fn distinct<'a>(
         }
         out
     };
-    let firsts =
-        if cands.len() as u64 >= crate::parallel::MIN_VERTICES && crate::parallel::threads() > 1 {
-            let (mut a, b) =
-                crate::parallel::join(true, interrupt, |_| firsts(Some(0)), |_| firsts(Some(1)));
-            a.extend(b);
-            a
-        } else {
-            firsts(None)
-        };
-    let mut keep = vec![false; cands.len()];
+    let firsts = if total as u64 >= crate::parallel::MIN_VERTICES && crate::parallel::threads() > 1
+    {
+        let (mut a, b) =
+            crate::parallel::join(true, interrupt, |_| firsts(Some(0)), |_| firsts(Some(1)));
+        a.extend(b);
+        a
+    } else {
+        firsts(None)
+    };
+    let mut keep = vec![false; total];
     for i in firsts {
         keep[i] = true;
     }
-    cands
-        .iter()
+    all()
         .zip(keep)
         .filter_map(|(c, k)| k.then_some(c))
         .collect()
@@ -324,11 +330,23 @@ pub fn map_runs(
     tol: f64,
     interrupt: &mut dyn FnMut(),
 ) -> Runs {
+    map_runs_of(ring, [cands, &[]], min_radius, tol, interrupt)
+}
+
+/// [`map_runs`] of the candidates of two lists, one after the other (as
+/// [`crate::medial::candidate_lists`] gives them).
+pub fn map_runs_of(
+    ring: &[Pt],
+    lists: [&[Candidate]; 2],
+    min_radius: f64,
+    tol: f64,
+    interrupt: &mut dyn FnMut(),
+) -> Runs {
     let n = ring.len();
     // Nearly identical circles (cocircular vertices give many) would map the same long runs again
     // and again: keep one per cell of a quarter of the tolerance in centre and radius.
     let cell = (tol / 4.0).max(f64::MIN_POSITIVE);
-    let cands = distinct(cands, min_radius, cell, interrupt);
+    let cands = distinct(lists, min_radius, cell, interrupt);
     // Where the vertices of a finely stroked arc are all on one circle, their circumcentres scatter
     // by more than that cell (a circumcircle of three close points is ill-conditioned) and each maps
     // a run of most of the ring: quadratic (hours for ST_Buffer(point, 1e6, 250000) at a tolerance
@@ -1079,16 +1097,20 @@ mod tests {
             })
             .map(|c| c.verts)
             .collect();
-        let got: Vec<[usize; 3]> = distinct(&cands, min_radius, cell, &mut || {})
-            .iter()
-            .map(|c| c.verts)
-            .collect();
         assert!(
             expected.len() > 10_000 && expected.len() < 200_000,
             "{}",
             expected.len()
         );
-        assert_eq!(got, expected);
+        // one list, or the same cut in two anywhere (as the candidates come from two threads)
+        for cut in [300_000, 0, 1, 123_457, 299_999] {
+            let (a, b) = cands.split_at(cut);
+            let got: Vec<[usize; 3]> = distinct([a, b], min_radius, cell, &mut || {})
+                .iter()
+                .map(|c| c.verts)
+                .collect();
+            assert_eq!(got, expected, "cut at {cut}");
+        }
     }
 
     proptest! {

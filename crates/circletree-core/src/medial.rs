@@ -40,9 +40,18 @@ impl HasPosition for V {
 /// Candidate circles of one ring (open, oriented with the polygon on its left).
 /// Returns an empty list when the ring crosses itself (the triangulation reports a conflict).
 pub fn candidates(ring: &[Pt], interrupt: &mut dyn FnMut()) -> Vec<Candidate> {
+    let [mut first, second] = candidate_lists(ring, interrupt);
+    first.extend(second);
+    first
+}
+
+/// [`candidates`] as two lists, one after the other: on a large ring each thread's, as it made
+/// them (putting them together was a copy of some 60 MB into fresh pages at a million vertices,
+/// 31 ms on one thread, for nothing: [`crate::filter::map_runs`] reads both where they are).
+pub fn candidate_lists(ring: &[Pt], interrupt: &mut dyn FnMut()) -> [Vec<Candidate>; 2] {
     let n = ring.len();
     if n < 3 {
-        return vec![];
+        return [vec![], vec![]];
     }
     let o = ring[0];
     let verts: Vec<V> = ring
@@ -76,14 +85,14 @@ pub fn candidates(ring: &[Pt], interrupt: &mut dyn FnMut()) -> Vec<Candidate> {
             None => cdt.insert(v),
         };
         let Ok(h) = inserted else {
-            return vec![];
+            return [vec![], vec![]];
         };
         handles[i as usize] = h;
         last = Some(h);
     }
     // a repeated point (the triangulation keeps one)
     if cdt.num_vertices() != n {
-        return vec![];
+        return [vec![], vec![]];
     }
     // Nearly every edge of a ring is an edge of its Delaunay triangulation already; only the
     // others are added as constraints (spade's `try_add_constraint` walks the line and allocates
@@ -102,7 +111,7 @@ pub fn candidates(ring: &[Pt], interrupt: &mut dyn FnMut()) -> Vec<Candidate> {
                 .try_add_constraint(handles[i], handles[(i + 1) % n])
                 .is_empty()
             {
-                return vec![];
+                return [vec![], vec![]];
             }
         }
         // An added edge that crossed a ring edge (no constraint itself: the ring crosses
@@ -111,7 +120,7 @@ pub fn candidates(ring: &[Pt], interrupt: &mut dyn FnMut()) -> Vec<Candidate> {
         missing.clear();
         side = seed_sides(&cdt, &handles, &mut missing);
         if !missing.is_empty() {
-            return vec![];
+            return [vec![], vec![]];
         }
     }
     interrupt();
@@ -122,8 +131,9 @@ pub fn candidates(ring: &[Pt], interrupt: &mut dyn FnMut()) -> Vec<Candidate> {
     // (sorting them afterwards, by scattering, was a copy of a hundred megabytes a million
     // vertices and half as long as finding them).
     let split = n * 3 / 8;
-    let ((mut out, mut faces), (rest, rest_faces)) = crate::parallel::join(
-        n as u64 >= crate::parallel::MIN_VERTICES,
+    let large = n as u64 >= crate::parallel::MIN_VERTICES;
+    let (mut first, mut second) = crate::parallel::join(
+        large,
         interrupt,
         |i| {
             fill_sides(&cdt, &mut side);
@@ -131,11 +141,22 @@ pub fn candidates(ring: &[Pt], interrupt: &mut dyn FnMut()) -> Vec<Candidate> {
         },
         |i| circles_from(&cdt, &handles, o, split..n, 2 * (n - split) + 64, i),
     );
-    out.extend(rest);
-    faces.extend(rest_faces);
-    // each circle's side (none for a face no ring edge reaches)
+    // each list's sides, side by side
+    let side = &side;
+    crate::parallel::join(
+        large,
+        interrupt,
+        |_| take_sides(&mut first, side),
+        |_| take_sides(&mut second, side),
+    );
+    [first.0, second.0]
+}
+
+/// Each circle's side from its face's (none for a face no ring edge reaches: the circle is
+/// dropped).
+fn take_sides((out, faces): &mut (Vec<Candidate>, Vec<u32>), side: &[u8]) {
     let mut unset = false;
-    for (cand, &f) in out.iter_mut().zip(&faces) {
+    for (cand, &f) in out.iter_mut().zip(faces.iter()) {
         match side[f as usize] {
             INSIDE => {}
             OUTSIDE => cand.r = -cand.r,
@@ -149,7 +170,6 @@ pub fn candidates(ring: &[Pt], interrupt: &mut dyn FnMut()) -> Vec<Candidate> {
             side[faces[k - 1] as usize] != UNSET
         });
     }
-    out
 }
 
 /// The circumcircles (centre, moved back from the local origin `o`; radius; vertices from the

@@ -49,10 +49,18 @@ pub(super) fn initial_entries(
         let (cands, dp_points) = crate::parallel::join(
             n as u64 >= crate::parallel::MIN_VERTICES,
             interrupt,
-            |i| medial::candidates(ring, i),
+            |i| medial::candidate_lists(ring, i),
             |_| opts.dp_tolerance.map(|dp| douglas_peucker::keep(ring, dp)),
         );
-        let runs = filter::map_runs(ring, &cands, opts.min_radius, max_error / 2.0, interrupt);
+        let [first, second] = &cands;
+        let runs = filter::map_runs_of(
+            ring,
+            [first, second],
+            opts.min_radius,
+            max_error / 2.0,
+            interrupt,
+        );
+        drop(cands);
         interrupt();
         (filter::select(n, runs, opts.overlap, interrupt), dp_points)
     } else {
