@@ -528,8 +528,9 @@ mod tests {
     fn ring_edges_delaunay_lacks_are_added_and_every_side_is_right() {
         // A comb of teeth 1 m apart, long and short in turn: a long tooth's sides pass 1 m from
         // the short teeth's tips on either side, which lie in every circle through a side's
-        // ends, so the sides are no Delaunay edges and must be added as constraints.
-        let teeth = 40;
+        // ends, so the sides are no Delaunay edges and must be added as constraints. Enough
+        // teeth for a large ring's paths (two threads, the ring edges looked up in halves).
+        let teeth = 2600;
         let mut ring: Vec<Pt> = vec![[0.0, -10.0], [teeth as f64, -10.0]];
         for k in (0..=teeth).rev() {
             ring.push([k as f64, if k % 2 == 0 { 100.0 } else { 50.0 }]);
@@ -546,6 +547,7 @@ mod tests {
             })
             .count();
         assert!(lacking >= 2, "{lacking}");
+        assert!(ring.len() as u64 >= crate::parallel::MIN_VERTICES);
         let c = candidates(&ring, &mut || {});
         let ours: Vec<[usize; 3]> = c.iter().map(|c| c.verts).collect();
         assert_eq!(ours, bulk_triangles(&ring));
@@ -555,7 +557,7 @@ mod tests {
             assert_eq!(k.r > 0.0, inside(&ring, mid), "{k:?}");
         }
         // and on the wavy coastline, whose triangles have no ring edge in long stretches
-        let n = 2000;
+        let n = 6000;
         let at = |i: usize| i as f64 / n as f64 * std::f64::consts::TAU;
         let wavy: Vec<Pt> = (0..n)
             .map(|i| {
