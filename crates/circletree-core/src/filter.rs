@@ -255,8 +255,8 @@ fn distinct<'a>(
             round_i64(cand.r / cell),
         )
     };
-    // Fx's hash mixed once more (splitmix64's finalizer), so that its top bit (which thread)
-    // and its middle bits (which list) are as even as its low ones (the table's)
+    // Fx's hash mixed once more (splitmix64's finalizer), so that its middle bits (which list)
+    // are as even as its low ones (the table's)
     let hash = |cand: &Candidate| {
         let mut z = rustc_hash::FxBuildHasher.hash_one(key(cand));
         z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
@@ -265,33 +265,46 @@ fn distinct<'a>(
     };
     // One table of every candidate is larger than the caches on a large ring (a miss for each
     // candidate): the candidates are spread over lists by their hash first, each list with a
-    // table of its own that fits, and on a large ring the lists of either half of the hashes on
-    // a thread of their own. A cell's candidates share a hash, so they meet in one list, in order.
+    // table of its own that fits. A cell's candidates share a hash, so they meet in one list, in
+    // order. On a large ring either half of the candidates is hashed and spread on a thread of
+    // its own (each candidate read and hashed once), then either half of the lists is looked
+    // through on a thread of its own, the first half's part of a list before the second's.
     let spreads = (total / DISTINCT_LIST).next_power_of_two().min(64);
-    let firsts = |half: Option<u64>| -> Vec<usize> {
-        // (hash, index): a list is read in order, and a candidate itself only where two hashes
-        // are equal (on a large ring, a list's candidates are pages apart)
+    // (hash, index): a list is read in order, and a candidate itself only where two hashes are
+    // equal (on a large ring, a list's candidates are pages apart)
+    let spread = |from: usize, to: usize| -> Vec<Vec<(u64, usize)>> {
         let mut spread: Vec<Vec<(u64, usize)>> = vec![Vec::new(); spreads];
-        for (i, cand) in all().enumerate() {
+        for (i, cand) in all().enumerate().take(to).skip(from) {
             if cand.r.abs() < min_radius {
                 continue;
             }
             let h = hash(cand);
-            if half.is_some_and(|half| h >> 63 != half) {
-                continue;
-            }
             spread[(h >> 40) as usize % spreads].push((h, i));
         }
+        spread
+    };
+    let large = total as u64 >= crate::parallel::MIN_VERTICES;
+    let half = if large { total / 2 } else { total };
+    let (first, second) = crate::parallel::join(
+        large,
+        interrupt,
+        |_| spread(0, half),
+        |_| spread(half, total),
+    );
+    let firsts = |which: std::ops::Range<usize>| -> Vec<usize> {
         let mut out = Vec::new();
         let mut table: hashbrown::HashTable<usize> = hashbrown::HashTable::new();
-        for list in spread {
+        for l in which {
+            let (a, b) = (&first[l], &second[l]);
+            let at = |p: usize| match p.checked_sub(a.len()) {
+                None => a[p],
+                Some(q) => b[q],
+            };
             table.clear();
-            table.reserve(list.len(), |&p| list[p].0);
-            for (p, &(h, i)) in list.iter().enumerate() {
-                let same =
-                    |&q: &usize| list[q].0 == h && key(cand_at(list[q].1)) == key(cand_at(i));
-                if let hashbrown::hash_table::Entry::Vacant(v) =
-                    table.entry(h, same, |&q| list[q].0)
+            table.reserve(a.len() + b.len(), |&p| at(p).0);
+            for (p, &(h, i)) in a.iter().chain(b).enumerate() {
+                let same = |&q: &usize| at(q).0 == h && key(cand_at(at(q).1)) == key(cand_at(i));
+                if let hashbrown::hash_table::Entry::Vacant(v) = table.entry(h, same, |&q| at(q).0)
                 {
                     v.insert(p);
                     out.push(i);
@@ -300,15 +313,13 @@ fn distinct<'a>(
         }
         out
     };
-    let firsts = if total as u64 >= crate::parallel::MIN_VERTICES && crate::parallel::threads() > 1
-    {
-        let (mut a, b) =
-            crate::parallel::join(true, interrupt, |_| firsts(Some(0)), |_| firsts(Some(1)));
-        a.extend(b);
-        a
-    } else {
-        firsts(None)
-    };
+    let (mut firsts, rest) = crate::parallel::join(
+        large,
+        interrupt,
+        |_| firsts(0..spreads / 2),
+        |_| firsts(spreads / 2..spreads),
+    );
+    firsts.extend(rest);
     let mut keep = vec![false; total];
     for i in firsts {
         keep[i] = true;
