@@ -669,7 +669,13 @@ pub fn select(n: usize, runs: Runs, overlap: f64, interrupt: &mut dyn FnMut()) -
         // runs with new edges, leaving the grid 0.12 million).
         let wide = m.len.max(NEARBY);
         if owners_clash((m.start + n - 1) % n, (m.len + 2).min(n))
-            || owners_clash((m.start + n - wide % n) % n, (m.len + 2 * wide).min(n))
+            || if m.len + 2 * wide >= n {
+                owners_clash(0, n)
+            } else {
+                // the edges beyond those asked, up to `wide` either side
+                owners_clash((m.start + n - wide) % n, wide - 1)
+                    || owners_clash((m.start + m.len + 1) % n, wide - 1)
+            }
         {
             continue;
         }
