@@ -137,7 +137,7 @@ pub fn candidate_lists(ring: &[Pt], interrupt: &mut dyn FnMut()) -> [Vec<Candida
         interrupt,
         |i| {
             fill_sides(&cdt, &mut side);
-            circles_from(&cdt, &handles, o, 0..split, cdt.num_inner_faces(), i)
+            circles_from(&cdt, &handles, o, 0..split, 2 * split + 64, i)
         },
         |i| circles_from(&cdt, &handles, o, split..n, 2 * (n - split) + 64, i),
     );
