@@ -6,7 +6,7 @@
 # the core's bytes_breakdown (format v1 against v2, where the bytes go) and decode_speed (v1
 # against v2) examples, time both encoders alone on one synthetic coastline of 1e3 .. 1e6 vertices
 # (time, the best of three runs, and peak memory), then write the report with scripts/bench_report.py (LZMA2 of every TWKB
-# value computed there). About 4 minutes after the build.
+# value computed there). About 5 minutes after the build.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/setup.sh
