@@ -243,10 +243,7 @@ fn distinct<'a>(
     interrupt: &mut dyn FnMut(),
 ) -> Vec<&'a Candidate> {
     let total = lists[0].len() + lists[1].len();
-    let cand_at = |i: usize| match i.checked_sub(lists[0].len()) {
-        None => &lists[0][i],
-        Some(j) => &lists[1][j],
-    };
+    let cand_at = |i: usize| in_two(lists[0], lists[1], i);
     let all = || lists[0].iter().chain(lists[1]);
     let key = |cand: &Candidate| {
         (
@@ -296,10 +293,7 @@ fn distinct<'a>(
         let mut table: hashbrown::HashTable<usize> = hashbrown::HashTable::new();
         for l in which {
             let (a, b) = (&first[l], &second[l]);
-            let at = |p: usize| match p.checked_sub(a.len()) {
-                None => a[p],
-                Some(q) => b[q],
-            };
+            let at = |p: usize| *in_two(a, b, p);
             table.clear();
             table.reserve(a.len() + b.len(), |&p| at(p).0);
             for (p, &(h, i)) in a.iter().chain(b).enumerate() {
@@ -434,12 +428,15 @@ impl Runs {
 
     /// Run `i` of [`Runs::iter`]'s order.
     fn get(&self, i: usize) -> &Mapped {
-        let first = &self.0[0];
-        if i < first.len() {
-            &first[i]
-        } else {
-            &self.0[1][i - first.len()]
-        }
+        in_two(&self.0[0], &self.0[1], i)
+    }
+}
+
+/// Item `i` of `a` then `b`, read as one list (the lists two threads made, where they are).
+fn in_two<'a, T>(a: &'a [T], b: &'a [T], i: usize) -> &'a T {
+    match i.checked_sub(a.len()) {
+        None => &a[i],
+        Some(j) => &b[j],
     }
 }
 
