@@ -81,10 +81,11 @@ pub fn round_i64(v: f64) -> i64 {
     if v.is_nan() || v.abs() >= 4_503_599_627_370_496.0 {
         return v as i64;
     }
-    let t = v as i64; // toward zero
-    let frac = v - t as f64; // exact: the fraction of a number below 2^52
-                             // (without branches: which way a fraction goes is a coin toss, and a mispredicted branch
-                             // costs more than `round`'s call)
+    // toward zero, then the fraction left (exact below 2^52)
+    let t = v as i64;
+    let frac = v - t as f64;
+    // without branches: which way a fraction goes is a coin toss, and a mispredicted branch
+    // costs more than `round`'s call
     t + i64::from(frac >= 0.5) - i64::from(frac <= -0.5)
 }
 
