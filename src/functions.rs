@@ -5,7 +5,7 @@ use crate::datatype::memory::StoredBytes;
 use crate::datatype::CircleTree;
 use crate::error::OrRaise;
 use circletree_core::decode;
-use circletree_core::geometry::Kind;
+use circletree_core::geom::Kind;
 use pgrx::prelude::*;
 use serde_json::json;
 
@@ -78,7 +78,7 @@ fn ct_summary(ct: CircleTree) -> pgrx::JsonB {
     }
     let bytes = ct.bytes.len() + pgrx::pg_sys::VARHDRSZ;
     let p = &v.params;
-    let num = |d: circletree_core::decimal::Decimal| d.to_f64();
+    let num = |d: circletree_core::format::Decimal| d.to_f64();
     pgrx::JsonB(json!({
         "format_version": v.version,
         "srid": v.srid,
@@ -145,6 +145,21 @@ pub(crate) fn interrupt() {
     pgrx::check_for_interrupts!();
 }
 
+/// An encoder's call from SQL: PostGIS's verdict on the input passed in (`invalid_reason` from
+/// `ST_IsValidReason` when `ST_IsValid` is false), interrupted as a statement is.
+fn call<'a>(
+    srid: Option<i32>,
+    invalid_reason: Option<&'a str>,
+    interrupt: &'a mut dyn FnMut(),
+) -> circletree_core::encode::Call<'a> {
+    use circletree_core::encode::{Call, Validity};
+    Call {
+        srid: srid.unwrap_or(0),
+        validity: invalid_reason.map_or(Validity::Valid, Validity::Invalid),
+        interrupt: Some(interrupt),
+    }
+}
+
 /// The encoders store 2D boundaries: say so when the input had Z or M values.
 pub(crate) fn notice_dropped_zm(report: &circletree_core::encode::Report) {
     if report.dropped_zm {
@@ -177,16 +192,12 @@ fn _ct_encode_wkb(
         dp_tolerance,
         max_error,
     };
-    let (value, report) = circletree_core::encode::encode_checked(
-        wkb,
-        srid.unwrap_or(0),
-        &opts,
-        invalid_reason,
-        &mut interrupt,
-    )
-    .or_raise();
+    let (value, bytes, report) =
+        circletree_core::encode::encode(wkb, &opts, call(srid, invalid_reason, &mut interrupt))
+            .or_raise()
+            .into_parts();
     notice_dropped_zm(&report);
-    Some(CircleTree::new(value))
+    Some(CircleTree { value, bytes })
 }
 
 /// [`_ct_encode_wkb`]'s counterpart for `ct_encode_within`: the fewest bytes within `max_error`.
@@ -204,14 +215,13 @@ fn _ct_encode_within_wkb(
         crate::settings::ENCODE_WITHIN_BYTES_PER_VERTEX,
         "ct_encode_within",
     );
-    let (value, bytes, report) = circletree_core::encode::encode_within_stored(
+    let (value, bytes, report) = circletree_core::encode::encode_within(
         wkb,
-        srid.unwrap_or(0),
         max_error,
-        invalid_reason,
-        &mut interrupt,
+        call(srid, invalid_reason, &mut interrupt),
     )
-    .or_raise();
+    .or_raise()
+    .into_parts();
     notice_dropped_zm(&report);
     Some(CircleTree { value, bytes })
 }
@@ -221,13 +231,13 @@ fn _ct_encode_within_wkb(
 fn measurable(ct: &CircleTree) {
     decode::check_size(
         &ct.value,
-        circletree_core::metrics::measure_tolerance(&ct.value),
+        circletree_core::check::measure_tolerance(&ct.value),
     )
     .or_raise();
 }
 
-fn original(wkb: &[u8]) -> Vec<circletree_core::geometry::Polygon> {
-    circletree_core::wkb::read(wkb).or_raise().shape.parts
+fn original(wkb: &[u8]) -> Vec<circletree_core::geom::Polygon> {
+    circletree_core::geom::wkb::read(wkb).or_raise().shape.parts
 }
 
 /// Area of the symmetric difference between the rebuilt value and a geometry (WKB). Release
@@ -235,7 +245,7 @@ fn original(wkb: &[u8]) -> Vec<circletree_core::geometry::Polygon> {
 #[pg_extern(immutable, strict, parallel_safe)]
 fn _ct_sliver_error_wkb(ct: CircleTree, wkb: &[u8]) -> f64 {
     measurable(&ct);
-    circletree_core::metrics::value_sliver(&ct.value, &original(wkb))
+    circletree_core::check::value_sliver(&ct.value, &original(wkb))
 }
 
 /// [`_ct_sliver_error_wkb`] refusing an invalid original (`invalid_reason` is PostGIS's
@@ -252,7 +262,7 @@ fn _ct_sliver_error_checked_wkb(
         crate::error::raise(circletree_core::Error::InvalidPolygon(reason.to_string()));
     }
     measurable(&ct);
-    Some(circletree_core::metrics::value_sliver(
+    Some(circletree_core::check::value_sliver(
         &ct.value,
         &original(wkb),
     ))
@@ -286,13 +296,13 @@ fn _ct_check_degrees(
 #[pg_extern(immutable, strict, parallel_safe)]
 fn _ct_hausdorff_wkb(ct: CircleTree, wkb: &[u8]) -> f64 {
     measurable(&ct);
-    circletree_core::metrics::value_hausdorff(&ct.value, &original(wkb), &mut interrupt)
+    circletree_core::check::value_hausdorff(&ct.value, &original(wkb), &mut interrupt)
 }
 
 /// Continuous Hausdorff distance between the boundaries of two (Multi)Polygons (WKB).
 #[pg_extern(immutable, strict, parallel_safe)]
 fn _ct_hausdorff_wkb2(a: &[u8], b: &[u8]) -> f64 {
-    circletree_core::metrics::shape_hausdorff(&original(a), &original(b), &mut interrupt)
+    circletree_core::check::shape_hausdorff(&original(a), &original(b), &mut interrupt)
 }
 
 /// ct_memsize(ct) over the original's WKB bytes, both recorded in the value.
@@ -315,7 +325,7 @@ fn _ct_svg_wkb(ct: Option<CircleTree>, wkb: Option<&[u8]>, width: Option<i32>) -
         range: "a positive number of pixels".into(),
     });
     let (svg, _) = width
-        .and_then(|w| circletree_core::picture::to_svg(&ct.value, original.as_deref(), w))
+        .and_then(|w| circletree_core::decode::to_svg(&ct.value, original.as_deref(), w))
         .or_raise();
     Some(svg)
 }

@@ -14,7 +14,7 @@
 use crate::datatype::CircleTree;
 use crate::error::OrRaise;
 use crate::settings::{ENCODE_BYTES_PER_VERTEX, ENCODE_WITHIN_BYTES_PER_VERTEX};
-use circletree_core::encode::HostCheck;
+use circletree_core::encode::{Call, HostCheck, Validity as Verdict};
 use pgrx::datum::Internal;
 use pgrx::pg_catalog::pg_proc::{PgProc, ProKind};
 use pgrx::pg_sys;
@@ -60,16 +60,13 @@ fn _ct_encode_geom(
         dp_tolerance,
         max_error,
     };
-    let (value, report) = circletree_core::encode::encode_host_checked(
-        wkb,
-        srid.unwrap_or(0),
-        &opts,
-        validity.host_check(),
-        &mut crate::functions::interrupt,
-    )
-    .or_raise();
+    let mut interrupt = crate::functions::interrupt;
+    let (value, bytes, report) =
+        circletree_core::encode::encode(wkb, &opts, validity.call(srid, &mut interrupt))
+            .or_raise()
+            .into_parts();
     crate::functions::notice_dropped_zm(&report);
-    Some(CircleTree::new(value))
+    Some(CircleTree { value, bytes })
 }
 
 /// Release 0.6.0's `ct_encode_within`: `_ct_encode_within_wkb` with PostGIS's validity asked
@@ -98,14 +95,11 @@ fn _ct_encode_within_geom(
             "ct_encode_within",
         )
     };
-    let (value, bytes, report) = circletree_core::encode::encode_within_host_checked(
-        wkb,
-        srid.unwrap_or(0),
-        max_error,
-        validity.host_check(),
-        &mut crate::functions::interrupt,
-    )
-    .or_raise();
+    let mut interrupt = crate::functions::interrupt;
+    let (value, bytes, report) =
+        circletree_core::encode::encode_within(wkb, max_error, validity.call(srid, &mut interrupt))
+            .or_raise()
+            .into_parts();
     crate::functions::notice_dropped_zm(&report);
     Some(CircleTree { value, bytes })
 }
@@ -147,17 +141,19 @@ impl Validity {
             geom,
             is_valid,
             reason,
-            polygonal: circletree_core::wkb::is_polygonal(wkb),
+            polygonal: circletree_core::geom::wkb::is_polygonal(wkb),
         }
     }
 
-    /// The check as the core's encoders take it.
-    pub fn host_check(
-        &self,
-    ) -> HostCheck<impl FnOnce() -> bool + '_, impl FnOnce() -> String + '_> {
-        HostCheck {
-            is_valid: || self.is_valid(),
-            reason: || self.reason(),
+    /// An encoder's call with this check asked beside it.
+    fn call<'a>(&'a self, srid: Option<i32>, interrupt: &'a mut dyn FnMut()) -> Call<'a> {
+        Call {
+            srid: srid.unwrap_or(0),
+            validity: Verdict::Host(HostCheck {
+                is_valid: Box::new(|| self.is_valid()),
+                reason: Box::new(|| self.reason()),
+            }),
+            interrupt: Some(interrupt),
         }
     }
 

@@ -35,7 +35,7 @@ pub fn init() {
 
 /// Tell the encoder how many threads this call may use (`circletree.encode_threads`).
 pub fn apply_encode_threads() {
-    circletree_core::parallel::set_threads(ENCODE_THREADS.get().clamp(1, 2) as usize);
+    circletree_core::set_threads(ENCODE_THREADS.get().clamp(1, 2) as usize);
 }
 
 /// Peak bytes a vertex of input costs, measured on a 1,000,000-vertex ring (VmHWM above a fresh

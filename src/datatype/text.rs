@@ -2,7 +2,7 @@
 
 use super::CircleTree;
 use crate::error::OrRaise;
-use circletree_core::text;
+use circletree_core::format;
 use pgrx::inoutfuncs::InOutFuncs;
 use pgrx::StringInfo;
 use std::ffi::CStr;
@@ -16,10 +16,10 @@ impl InOutFuncs for CircleTree {
                 position: 1,
             }),
         };
-        CircleTree::new(text::from_text(s).or_raise())
+        CircleTree::new(format::from_text(s).or_raise())
     }
 
     fn output(&self, buffer: &mut StringInfo) {
-        buffer.push_str(&text::to_text(&self.value));
+        buffer.push_str(&format::to_text(&self.value));
     }
 }

@@ -3,8 +3,11 @@
 #[path = "../tests/common/mod.rs"]
 mod common;
 
-use circletree_core::encode::{encode, Options};
-use circletree_core::{decode, douglas_peucker, filter, geometry, medial, metrics, wkb};
+use circletree_core::encode::{encode, Call, Options};
+use circletree_core::{
+    check, decode, geom, geom::wkb, internals::douglas_peucker, internals::filter,
+    internals::medial,
+};
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use std::hint::black_box;
 
@@ -17,11 +20,13 @@ fn steps(c: &mut Criterion) {
     };
     for s in common::load(&["kapiti_island_linz", "sicily"]) {
         let mut shape = wkb::read(&s.wkb).expect("wkb").shape;
-        geometry::orient(&mut shape);
+        geom::orient(&mut shape);
         let ring = shape.parts[0][0].clone();
         let cands = medial::candidates(&ring, &mut || {});
         let runs = filter::map_runs(&ring, &cands, 5.0, 5.0, &mut || {});
-        let (ct, _) = encode(&s.wkb, s.srid, &opts, &mut || {}).expect("encode");
+        let ct = encode(&s.wkb, &opts, Call::new(s.srid))
+            .expect("encode")
+            .value;
         let mut g = c.benchmark_group(format!("{} ({} vertices)", s.name, s.npoints));
         g.sample_size(10);
         g.bench_function(BenchmarkId::new("1 medial", ""), |b| {
@@ -38,13 +43,13 @@ fn steps(c: &mut Criterion) {
         });
         g.bench_function(
             BenchmarkId::new("encode (all steps + repair loop)", ""),
-            |b| b.iter(|| encode(black_box(&s.wkb), s.srid, &opts, &mut || {})),
+            |b| b.iter(|| encode(black_box(&s.wkb), &opts, Call::new(s.srid))),
         );
         g.bench_function(BenchmarkId::new("decode to WKB", ""), |b| {
             b.iter(|| decode::to_wkb(black_box(&ct), None))
         });
         g.bench_function(BenchmarkId::new("hausdorff", ""), |b| {
-            b.iter(|| metrics::value_hausdorff(black_box(&ct), &shape.parts, &mut || {}))
+            b.iter(|| check::value_hausdorff(black_box(&ct), &shape.parts, &mut || {}))
         });
         g.finish();
     }

@@ -4,7 +4,7 @@
 //! `CT_THREADS=1` never starts a second thread.
 #[path = "../tests/common/mod.rs"]
 mod common;
-use circletree_core::encode::{encode, encode_within, Options};
+use circletree_core::encode::{encode, encode_within, Call, Options};
 use circletree_core::format::CircleTree;
 use std::time::Instant;
 
@@ -39,7 +39,7 @@ fn main() {
     };
     // CT_THREADS=1: never a second thread (to compare against the single-threaded path)
     if let Ok(n) = std::env::var("CT_THREADS") {
-        circletree_core::parallel::set_threads(n.parse().expect("CT_THREADS: a number"));
+        circletree_core::set_threads(n.parse().expect("CT_THREADS: a number"));
     }
     let only: Vec<String> = std::env::var("CT_ONLY")
         .map(|v| v.split(',').map(String::from).collect())
@@ -48,10 +48,11 @@ fn main() {
     for s in common::load(&only) {
         let t = Instant::now();
         let res = if std::env::var("CT_WITHIN").is_ok() {
-            encode_within(&s.wkb, s.srid, o.dp_tolerance.expect("t"), None, &mut || {})
+            encode_within(&s.wkb, o.dp_tolerance.expect("t"), Call::new(s.srid))
         } else {
-            encode(&s.wkb, s.srid, &o, &mut || {})
-        };
+            encode(&s.wkb, &o, Call::new(s.srid))
+        }
+        .map(|e| (e.value, e.report));
         let dt = t.elapsed().as_secs_f64();
         tt += dt;
         match res {

@@ -1,10 +1,10 @@
-//! Time the quick validity proof ([`circletree_core::proof`]) against the core's own strict
-//! check ([`circletree_core::validity::problems`]) on every real polygon of a set:
+//! Time the quick validity proof ([`circletree_core::check::proves_valid`]) against the core's own strict
+//! check ([`circletree_core::check::problems`]) on every real polygon of a set:
 //! `cargo run --release -p circletree-core --example proof_speed -- [polygons|holdout]`.
 //! Prints, per set, how many inputs were proved valid and the best of five summed times.
 #[path = "../tests/common/mod.rs"]
 mod common;
-use circletree_core::validity::{problems, RingRef};
+use circletree_core::check::{problems, RingRef};
 use std::time::Instant;
 
 fn main() {
@@ -13,7 +13,7 @@ fn main() {
         .unwrap_or_else(|| "polygons".to_string());
     let inputs: Vec<_> = common::load_file(&file, &[])
         .into_iter()
-        .map(|s| circletree_core::wkb::read(&s.wkb).expect("reads"))
+        .map(|s| circletree_core::geom::wkb::read(&s.wkb).expect("reads"))
         .collect();
     let (mut proved, mut given) = (0, 0);
     let (mut best_proof, mut best_check) = (f64::MAX, f64::MAX);
@@ -24,7 +24,7 @@ fn main() {
         for i in &inputs {
             given += i.as_given as usize;
             proved +=
-                (i.as_given && circletree_core::proof::proves_valid(&i.shape, &mut || {})) as usize;
+                (i.as_given && circletree_core::check::proves_valid(&i.shape, &mut || {})) as usize;
         }
         best_proof = best_proof.min(t.elapsed().as_secs_f64());
         let t = Instant::now();

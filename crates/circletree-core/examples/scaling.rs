@@ -7,8 +7,8 @@
 //! vertices at the same spacing, not a denser outline): vertices 10 m apart along a disc of
 //! circumference 10·n m, with bays and headlands at wavelengths of 20 km, 2 km and 200 m
 //! (amplitudes 1 km, 100 m, 10 m) and 2 m of vertex noise.
-use circletree_core::encode::{encode, encode_within, Options};
-use circletree_core::geometry::Kind;
+use circletree_core::encode::{encode, encode_within, Call, Options};
+use circletree_core::geom::Kind;
 use std::time::Instant;
 
 fn main() {
@@ -23,7 +23,7 @@ fn main() {
     };
     // CT_THREADS=1: never a second thread (to compare against the single-threaded path)
     if let Ok(n) = std::env::var("CT_THREADS") {
-        circletree_core::parallel::set_threads(n.parse().expect("CT_THREADS: a number"));
+        circletree_core::set_threads(n.parse().expect("CT_THREADS: a number"));
     }
     for n in sizes {
         let mut seed = 12345u64;
@@ -46,7 +46,7 @@ fn main() {
                 [500_000.0 + r * t.cos(), 6_000_000.0 + r * t.sin()]
             })
             .collect();
-        let wkb = circletree_core::wkb::write(Kind::Polygon, &[vec![ring]]);
+        let wkb = circletree_core::geom::wkb::write(Kind::Polygon, &[vec![ring]]);
         let opts = Options {
             min_radius: 5.0,
             overlap: 0.4,
@@ -55,10 +55,11 @@ fn main() {
         };
         let t = Instant::now();
         let (ct, rep) = if std::env::var("CT_WITHIN").is_ok() {
-            encode_within(&wkb, 32760, 10.0, None, &mut || {})
+            encode_within(&wkb, 10.0, Call::new(32760))
         } else {
-            encode(&wkb, 32760, &opts, &mut || {})
+            encode(&wkb, &opts, Call::new(32760))
         }
+        .map(|e| (e.value, e.report))
         .expect("encode");
         let secs = t.elapsed().as_secs_f64();
         let bytes = ct.to_bytes();

@@ -4,7 +4,7 @@
 //! (`tests/golden.rs` reads it in every later release).
 #[path = "../tests/common/mod.rs"]
 mod common;
-use circletree_core::encode::{encode, encode_within, Options};
+use circletree_core::encode::{encode, encode_within, Call, Options};
 use std::io::Write;
 
 fn hex(b: &[u8]) -> String {
@@ -29,13 +29,17 @@ fn main() {
                 dp_tolerance: Some(t),
                 max_error: None,
             };
-            let (ct, _) = encode(&s.wkb, s.srid, &o, &mut || {}).expect("encodes");
+            let ct = encode(&s.wkb, &o, Call::new(s.srid))
+                .expect("encodes")
+                .value;
             let wkb = circletree_core::decode::to_wkb(&ct, None).expect("decodes");
             let name = format!("{}@encode({r},0.4,{t})", s.name);
             writeln!(out, "{name}\t{}\t{}", hex(&ct.to_bytes()), hex(&wkb)).expect("write");
         }
         let t = 25.0;
-        let (ct, _) = encode_within(&s.wkb, s.srid, t, None, &mut || {}).expect("encodes");
+        let ct = encode_within(&s.wkb, t, Call::new(s.srid))
+            .expect("encodes")
+            .value;
         let wkb = circletree_core::decode::to_wkb(&ct, None).expect("decodes");
         let name = format!("{}@encode_within({t})", s.name);
         writeln!(out, "{name}\t{}\t{}", hex(&ct.to_bytes()), hex(&wkb)).expect("write");

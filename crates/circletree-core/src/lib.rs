@@ -1,35 +1,35 @@
-//! circletree-core: store polygons as ordered circles `(x, y, ±r)` and rebuild them from tangents
-//! and arcs. Pure Rust, no PostgreSQL: the extension's glue only moves bytes and maps errors.
+//! circletree-core: polygons stored as ordered circles `(x, y, ±r)` and rebuilt from tangents and
+//! arcs (the circle tree of Moore 2002), made valid and bounded by a closed loop. Pure Rust, no
+//! PostgreSQL: the extension's glue only moves bytes and maps errors.
 //!
-//! One module per step: [`wkb`] (input/output), [`medial`] (Voronoi circles, paper 3.1),
-//! [`filter`] (3.3), [`douglas_peucker`] (3.5), [`min_points`] (fewest points within a tolerance), [`reconstruct`] (tangents and arcs, 3.5),
-//! [`validity`], [`encode`] (the pipeline and its closed repair loop), [`picture`] (an SVG of a value), [`format`] (the stored
-//! bytes), [`text`] (the text form), [`metrics`] (sliver area, Hausdorff).
+//! The folders follow the design:
+//! - [`geom`]: points, rings and polygons, WKB in and out;
+//! - [`encode`]: the two encoders, [`encode::encode`] (the paper's circles, `encode/paper/`) and
+//!   [`encode::encode_within`] (the fewest points within a bound), and the closed repair loop both
+//!   pass through;
+//! - [`check`]: validity of the rebuilt rings and arcs, the quick proof of an input's validity,
+//!   and the metrics (sliver area, continuous Hausdorff distance);
+//! - [`format`]: the stored bytes (`docs/FORMAT.md`): the grid, decimals, the range coder, format
+//!   versions 1 and 2, and the text form;
+//! - [`decode`]: from a stored value back to geometry (tangents and arcs), and its picture.
 #![forbid(unsafe_code)]
 
-pub mod arcs;
-pub mod box_grid;
-pub mod coder;
-pub mod decimal;
+pub mod check;
 pub mod decode;
-pub mod douglas_peucker;
 pub mod encode;
-pub mod error;
-pub mod filter;
+mod error;
 pub mod format;
-pub mod geometry;
-pub mod grid;
-pub mod medial;
-pub mod metrics;
-pub mod min_points;
-pub mod parallel;
-pub mod picture;
-pub mod proof;
-pub mod reconstruct;
-pub mod text;
-pub mod touch;
-pub mod validity;
-pub mod wkb;
+pub mod geom;
+mod parallel;
+
+pub use error::{Error, Result};
+pub use parallel::set_threads;
+
+/// Not a stable API: the steps the benches of this repository time one by one.
+#[doc(hidden)]
+pub mod internals {
+    pub use crate::encode::paper::{douglas_peucker, filter, medial};
+}
 
 /// Tests' reproducible numbers in `[0, 1)` from a seed (Knuth's MMIX linear congruential
 /// generator, its top 53 bits).
@@ -42,5 +42,3 @@ pub(crate) fn test_uniform(mut seed: u64) -> impl FnMut() -> f64 {
         (seed >> 11) as f64 / (1u64 << 53) as f64
     }
 }
-
-pub use error::{Error, Result};

@@ -42,8 +42,8 @@ fn check_fixture(version: u8, count: usize) {
         );
         let ct = CircleTree::from_bytes(&bytes).unwrap_or_else(|e| panic!("{name}: {e}"));
         assert_eq!(ct.to_bytes(), bytes, "{name}: re-serialized bytes differ");
-        let text = circletree_core::text::to_text(&ct);
-        let back = circletree_core::text::from_text(&text).expect("text form");
+        let text = circletree_core::format::to_text(&ct);
+        let back = circletree_core::format::from_text(&text).expect("text form");
         assert_eq!(back.to_bytes(), bytes, "{name}: text round trip");
         let decoded = circletree_core::decode::to_wkb(&ct, None).expect("decode");
         assert!(

@@ -5,10 +5,10 @@
 //! measured by `metrics` (arcs stroked a hundred times finer than the encoder's own check).
 mod common;
 
-use circletree_core::encode::{encode, encode_within_stored, Options, Report};
+use circletree_core::check::{problems, RingRef};
+use circletree_core::encode::{encode, encode_within, Call, Options, Report};
 use circletree_core::format::CircleTree;
-use circletree_core::validity::{problems, RingRef};
-use circletree_core::{decode, metrics, wkb};
+use circletree_core::{check, decode, geom::wkb};
 use geo::Validation;
 
 fn check(min_radius: f64, dp: f64) {
@@ -24,7 +24,7 @@ fn check_only(min_radius: f64, dp: f64, names: &[&str]) {
         max_error: None,
     };
     check_encoder(min_radius.max(dp), names, |s| {
-        encode(&s.wkb, s.srid, &opts, &mut || {})
+        encode(&s.wkb, &opts, Call::new(s.srid)).map(|e| (e.value, e.report))
     });
 }
 
@@ -79,7 +79,7 @@ fn check_encoder(
                 ));
             }
         }
-        let h = metrics::value_hausdorff(&ct, &original.parts, &mut || {});
+        let h = check::value_hausdorff(&ct, &original.parts, &mut || {});
         if h > max_error {
             failures.push(format!("{}: Hausdorff {h} > {max_error}", s.name));
         }
@@ -114,7 +114,7 @@ fn every_polygon_within_10_25_100() {
     // ct_encode_within: every plan it keeps passed the same closed loop; checked again here.
     for t in [10.0, 25.0, 100.0] {
         check_encoder(t, &[], |s| {
-            let (ct, bytes, report) = encode_within_stored(&s.wkb, s.srid, t, None, &mut || {})?;
+            let (ct, bytes, report) = encode_within(&s.wkb, t, Call::new(s.srid))?.into_parts();
             // the bytes it hands the glue to store are the value's own
             assert_eq!(bytes, ct.to_bytes(), "{} at {t}", s.name);
             // the bounds that rank the plans hold the value's size
@@ -148,7 +148,8 @@ fn kapiti_at_the_papers_scale() {
         dp_tolerance: Some(10.0),
         max_error: None,
     };
-    let (ct, report) = encode(&s.wkb, s.srid, &opts, &mut || {}).expect("encode");
+    let e = encode(&s.wkb, &opts, Call::new(s.srid)).expect("encode");
+    let (ct, report) = (e.value, e.report);
     let all: Vec<_> = ct.parts.iter().flatten().flatten().collect();
     let internal = all.iter().filter(|c| c.r > 0).count();
     let external = all.iter().filter(|c| c.r < 0).count();

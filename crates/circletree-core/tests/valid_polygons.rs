@@ -1,10 +1,10 @@
 //! Every valid polygon encodes (or is refused with a parameter error), and every value the encoder
 //! returns reads back and rebuilds valid and within `max_error`, however finely its arcs are
 //! stroked. Validity is judged by `geo`'s OGC validation, not by the encoder's own checker.
-use circletree_core::encode::{encode, encode_within, Options};
+use circletree_core::encode::{encode, encode_within, Call, Options};
 use circletree_core::format::CircleTree;
-use circletree_core::geometry::{Kind, Polygon, Pt};
-use circletree_core::{decode, metrics, wkb, Error};
+use circletree_core::geom::{Kind, Polygon, Pt};
+use circletree_core::{check, decode, geom::wkb, Error};
 use geo::Validation;
 use proptest::prelude::*;
 use std::f64::consts::TAU;
@@ -29,14 +29,15 @@ fn promise(kind: Kind, parts: &[Polygon], o: &Options) -> Result<CircleTree, Err
         original.validation_errors()
     );
     let bound = o.check()?;
-    match encode_within(&input, 32633, bound, None, &mut || {}) {
-        Ok((ct, _)) => {
+    match encode_within(&input, bound, Call::new(32633)) {
+        Ok(e) => {
+            let ct = e.value;
             kept(&ct, parts, bound, "encode_within");
         }
         Err(Error::InvalidParameter { .. }) => {}
         Err(e) => panic!("encode_within refused a valid polygon: {e}"),
     }
-    let (ct, _) = encode(&input, 32633, o, &mut || {})?;
+    let ct = encode(&input, o, Call::new(32633))?.value;
     Ok(kept(&ct, parts, bound, "encode"))
 }
 
@@ -55,7 +56,7 @@ fn kept(ct: &CircleTree, parts: &[Polygon], bound: f64, who: &str) -> CircleTree
         );
         assert_eq!(rebuilt.len(), parts.len());
     }
-    let h = metrics::value_hausdorff(&ct, parts, &mut || {});
+    let h = check::value_hausdorff(&ct, parts, &mut || {});
     assert!(h <= bound * (1.0 + 1e-9), "{who}: Hausdorff {h} > {bound}");
     ct
 }

@@ -4,12 +4,10 @@
 //! (always valid: most inputs exercise the encoder) or free points (mostly invalid: the encoder
 //! must not panic on what PostGIS would have refused first).
 #![no_main]
-use circletree_core::encode::{
-    encode, encode_host_checked, encode_within, encode_within_host_checked, HostCheck, Options,
-};
+use circletree_core::encode::{encode, encode_within, Call, HostCheck, Options, Validity};
 use circletree_core::format::CircleTree;
-use circletree_core::geometry::{Kind, Pt};
-use circletree_core::{decode, metrics, wkb, Error};
+use circletree_core::geom::{Kind, Pt};
+use circletree_core::{check, decode, geom::wkb, Error};
 use geo::Validation;
 use libfuzzer_sys::fuzz_target;
 
@@ -72,8 +70,8 @@ fuzz_target!(|data: &[u8]| {
     // geo's OGC validation passes a ring whose edges fold back onto each other (zero area, e.g.
     // (0 0, 1000 0, 18 0, 0 0): the fuzzer's first finding); PostGIS calls that a self-intersection
     // and the SQL wrappers refuse it before the encoder sees it, so it is not a valid polygon here.
-    let valid = wkb::to_geo(&parts).is_valid()
-        && parts.iter().flatten().all(|r| ring_area(r).abs() > 0.0);
+    let valid =
+        wkb::to_geo(&parts).is_valid() && parts.iter().flatten().all(|r| ring_area(r).abs() > 0.0);
     let input = wkb::write(Kind::Polygon, &parts);
     let o = Options {
         min_radius: bound / 2.0,
@@ -82,34 +80,38 @@ fuzz_target!(|data: &[u8]| {
         max_error: None,
     };
     let res = if within {
-        encode_within(&input, 0, bound, None, &mut || {})
+        encode_within(&input, bound, Call::new(0))
     } else {
-        encode(&input, 0, &o, &mut || {})
-    };
+        encode(&input, &o, Call::new(0))
+    }
+    .map(|e| e.value);
     if head[0] & 16 != 0 {
         // the host's verdict asked beside the encoder (ct_encode and ct_encode_within in SQL since
         // 0.6.0; these inputs are below the size that starts a thread, so the order is the
         // sequential one): a valid verdict gives what the verdict passed in gives, an invalid one
         // the host's reason, or the error found while reading, as before
-        let check = HostCheck {
-            is_valid: || valid,
-            reason: || "host says no".to_string(),
-        };
+        let call = Call::new(0).validity(Validity::Host(HostCheck {
+            is_valid: Box::new(|| valid),
+            reason: Box::new(|| "host says no".to_string()),
+        }));
         let host = if within {
-            encode_within_host_checked(&input, 0, bound, check, &mut || {}).map(|(ct, _, _)| ct)
+            encode_within(&input, bound, call)
         } else {
-            encode_host_checked(&input, 0, &o, check, &mut || {}).map(|(ct, _)| ct)
-        };
+            encode(&input, &o, call)
+        }
+        .map(|e| e.value);
         match (&host, &res) {
-            (Ok(a), Ok((b, _))) if valid => assert_eq!(a.to_bytes(), b.to_bytes()),
+            (Ok(a), Ok(b)) if valid => assert_eq!(a.to_bytes(), b.to_bytes()),
             (Err(a), Err(b)) if valid => assert_eq!(a.to_string(), b.to_string()),
             (Err(Error::InvalidPolygon(r)), _) if !valid => assert_eq!(r, "host says no"),
             (Err(a), Err(b)) if !valid => assert_eq!(a.to_string(), b.to_string()),
-            _ => panic!("host check {host:?} against the verdict passed in {res:?} (valid: {valid})"),
+            _ => {
+                panic!("host check {host:?} against the verdict passed in {res:?} (valid: {valid})")
+            }
         }
     }
     let ct = match res {
-        Ok((ct, _)) => ct,
+        Ok(ct) => ct,
         Err(Error::InvalidParameter { .. }) => return,
         Err(e) => {
             assert!(!valid, "a valid polygon was refused: {e}");
@@ -131,6 +133,6 @@ fuzz_target!(|data: &[u8]| {
             geo.validation_errors()
         );
     }
-    let h = metrics::value_hausdorff(&ct, &parts, &mut || {});
+    let h = check::value_hausdorff(&ct, &parts, &mut || {});
     assert!(h <= bound * (1.0 + 1e-9), "Hausdorff {h} > {bound}");
 });

@@ -1,6 +1,6 @@
 //! Arbitrary text to the text-form parser: an error or a value whose text reads back to itself.
 #![no_main]
-use circletree_core::text::{from_text, to_text};
+use circletree_core::format::{from_text, to_text};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {

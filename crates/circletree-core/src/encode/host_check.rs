@@ -9,7 +9,7 @@
 //! reading the input or its parameters comes first, then the host's verdict, then the encoder's
 //! result. An invalid verdict stops the encoder at its next interrupt check.
 //!
-//! Before either, the input is read once and [`crate::proof`] asked whether it is valid beyond
+//! Before either, the input is read once and [`crate::check::proof`] asked whether it is valid beyond
 //! doubt (every real polygon of `tests/data`, in about a third of the host's time): then the
 //! host is not asked at all and the encoder starts from what was read. Only an input the proof
 //! cannot decide goes to the host, so what is accepted and refused, and with which reason, stays
@@ -23,11 +23,11 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The host's validity check of the input: `is_valid` first, `reason` (the text the error
 /// carries) only when it says no. Both are called on the caller's thread.
-pub struct HostCheck<V, R> {
+pub struct HostCheck<'a> {
     /// Whether the input is valid (PostGIS: `ST_IsValid`).
-    pub is_valid: V,
+    pub is_valid: Box<dyn FnOnce() -> bool + 'a>,
     /// Why it is not (PostGIS: `ST_IsValidReason`).
-    pub reason: R,
+    pub reason: Box<dyn FnOnce() -> String + 'a>,
 }
 
 /// What the encoder knows of the input's validity when it has read it.
@@ -49,14 +49,17 @@ struct Invalid;
 /// Run `encode` with the host's `check` beside it; see the module's documentation.
 pub(super) fn beside<T: Send>(
     wkb: &[u8],
-    check: HostCheck<impl FnOnce() -> bool, impl FnOnce() -> String>,
+    check: HostCheck<'_>,
     interrupt: &mut dyn FnMut(),
-    encode: impl FnOnce(Verdict<'_>, Option<crate::wkb::Input>, &mut dyn FnMut()) -> Result<T> + Send,
+    encode: impl FnOnce(Verdict<'_>, Option<crate::geom::wkb::Input>, &mut dyn FnMut()) -> Result<T>
+        + Send,
 ) -> Result<T> {
     // (an input that cannot be read is left to the encoder, which reads it again and says why in
     // its own order; one that can is handed to the encoder either way, not read twice)
-    let given = match crate::wkb::read(wkb) {
-        Ok(input) if input.as_given && crate::proof::proves_valid(&input.shape, interrupt) => {
+    let given = match crate::geom::wkb::read(wkb) {
+        Ok(input)
+            if input.as_given && crate::check::proof::proves_valid(&input.shape, interrupt) =>
+        {
             return encode(Verdict::Known(None), Some(input), interrupt);
         }
         other => other.ok(),
@@ -106,6 +109,7 @@ pub(super) fn beside<T: Send>(
 
 #[cfg(test)]
 mod tests {
+    use super::super::{encode, encode_within, Call, Validity};
     use super::*;
 
     fn square(n: usize) -> Vec<u8> {
@@ -113,7 +117,7 @@ mod tests {
     }
 
     /// The same square, its first point given twice when `repeat`: still valid, but not read
-    /// as given, so [`crate::proof`] leaves it to the host.
+    /// as given, so [`crate::check::proof`] leaves it to the host.
     fn repeated(n: usize) -> Vec<u8> {
         square_as(n, true)
     }
@@ -155,23 +159,18 @@ mod tests {
     fn within_asked(wkb: &[u8], max_error: f64, valid: bool) -> ((Result<Vec<u8>>, usize), bool) {
         let mut reasons = 0;
         let asked = std::cell::Cell::new(false);
-        let r = super::super::encode_within_host_checked(
-            wkb,
-            0,
-            max_error,
-            HostCheck {
-                is_valid: || {
-                    asked.set(true);
-                    valid
-                },
-                reason: || {
-                    reasons += 1;
-                    "Self-intersection[5 5]".to_string()
-                },
-            },
-            &mut || {},
-        )
-        .map(|(_, bytes, _)| bytes);
+        let check = HostCheck {
+            is_valid: Box::new(|| {
+                asked.set(true);
+                valid
+            }),
+            reason: Box::new(|| {
+                reasons += 1;
+                "Self-intersection[5 5]".to_string()
+            }),
+        };
+        let call = Call::new(0).validity(Validity::Host(check));
+        let r = encode_within(wkb, max_error, call).map(|e| e.into_parts().1);
         ((r, reasons), asked.get())
     }
 
@@ -181,8 +180,9 @@ mod tests {
         for n in [10, 2_000] {
             for (wkb, proved) in [(square(n), true), (repeated(n), false)] {
                 let ((beside, reasons), asked) = within_asked(&wkb, 0.5, true);
-                let first = super::super::encode_within_stored(&wkb, 0, 0.5, None, &mut || {})
+                let first = encode_within(&wkb, 0.5, Call::new(0))
                     .unwrap()
+                    .into_parts()
                     .1;
                 assert_eq!(beside.unwrap(), first);
                 assert_eq!(reasons, 0);
@@ -234,15 +234,16 @@ mod tests {
             dp_tolerance: Some(10.0),
             max_error: None,
         };
-        let check = |valid: bool| HostCheck {
-            is_valid: move || valid,
-            reason: || "Ring Self-intersection[0 0]".to_string(),
+        let host = |valid: bool| {
+            Call::new(0).validity(Validity::Host(HostCheck {
+                is_valid: Box::new(move || valid),
+                reason: Box::new(|| "Ring Self-intersection[0 0]".to_string()),
+            }))
         };
-        let beside =
-            super::super::encode_host_checked(&wkb, 0, &opts, check(true), &mut || {}).unwrap();
-        let first = super::super::encode(&wkb, 0, &opts, &mut || {}).unwrap();
-        assert_eq!(beside.0.to_bytes(), first.0.to_bytes());
-        let r = super::super::encode_host_checked(&wkb, 0, &opts, check(false), &mut || {});
+        let beside = encode(&wkb, &opts, host(true)).unwrap();
+        let first = encode(&wkb, &opts, Call::new(0)).unwrap();
+        assert_eq!(beside.value.to_bytes(), first.value.to_bytes());
+        let r = encode(&wkb, &opts, host(false));
         assert!(matches!(r, Err(Error::InvalidPolygon(_))), "{r:?}");
     }
 }

@@ -1,12 +1,12 @@
 //! What a plan starts from, per ring: the paper's circles (medial circles filtered and mapped to
 //! runs of edges, sections 3.1-3.3) with Douglas-Peucker points where no circle covers the boundary
-//! (3.5), or the fewest points within a tolerance alone ([`crate::min_points`]); the input's touch
+//! (3.5), or the fewest points within a tolerance alone ([`crate::encode::min_points`]); the input's touch
 //! points always. Ordered along the ring by the first vertex each stands for.
 
+use super::paper::{douglas_peucker, filter, medial};
 use super::{Options, Report};
-use crate::geometry::Pt;
-use crate::grid::Grid;
-use crate::{douglas_peucker, filter, medial};
+use crate::format::grid::Grid;
+use crate::geom::Pt;
 
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Entry {
@@ -82,7 +82,7 @@ pub(super) fn initial_entries(
         // points alone: the fewest within the tolerance, the touch points among them
         if let Some(tol) = opts.dp_tolerance {
             let snap = |p: Pt| [grid.snap(p[0]), grid.snap(p[1])];
-            for v in crate::min_points::keep(ring, tol, pinned, &snap, interrupt) {
+            for v in crate::encode::min_points::keep(ring, tol, pinned, &snap, interrupt) {
                 if !pinned.contains(&v) {
                     entries.push(Entry::point(ring, v, false));
                     report.dp_points += 1;

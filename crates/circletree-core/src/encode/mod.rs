@@ -1,19 +1,19 @@
 //! The encoder: the paper's method (sections 3.1-3.5) followed by a closed loop that the paper
 //! did not have.
 //!
-//! Per ring: candidate circles ([`crate::medial`]), filtered and mapped to runs of edges
-//! ([`crate::filter`]), Douglas-Peucker points as zero-radius circles where no circle covers the
-//! boundary ([`crate::douglas_peucker`]), everything ordered along the ring by the first vertex it
+//! Per ring: candidate circles ([`crate::encode::paper::medial`]), filtered and mapped to runs of edges
+//! ([`crate::encode::paper::filter`]), Douglas-Peucker points as zero-radius circles where no circle covers the
+//! boundary ([`crate::encode::paper::douglas_peucker`]), everything ordered along the ring by the first vertex it
 //! stands for. Then, for the whole geometry at once:
 //!
 //! 1. quantize the circles to the grid and rebuild every ring exactly as `ct_decode` will
-//!    ([`crate::reconstruct`], arcs stroked to the grid step);
+//!    ([`crate::decode::reconstruct`], arcs stroked to the grid step);
 //! 2. measure the continuous Hausdorff distance between each rebuilt ring and its original, both
 //!    ways, with R-trees and a Lipschitz bound on each segment (no sampling gaps), against
 //!    `max_error − grid` (so the true arcs are within `max_error` too);
-//! 3. check validity as OGC defines it ([`crate::validity`] on the stroke, [`crate::arcs`] on the
+//! 3. check validity as OGC defines it ([`crate::check::validity`] on the stroke, [`crate::check::arcs`] on the
 //!    true arcs, so that every finer stroke and the curved form are valid too); rings may touch
-//!    only at the input's own touch points ([`crate::touch`]), which every ring through them keeps
+//!    only at the input's own touch points ([`crate::check::touch`]), which every ring through them keeps
 //!    as a zero-radius circle;
 //! 4. where a span between two consecutive circles fails, add an original vertex inside it as a
 //!    zero-radius circle (counted as *repaired*); a span with no vertex left loses its circle.
@@ -32,16 +32,18 @@
 
 mod host_check;
 mod initial;
+pub(crate) mod min_points;
+pub(crate) mod paper;
 mod repair;
 
-use crate::decimal::Decimal;
+use crate::check::touch;
+use crate::check::validity::{touch_key, Touches};
 use crate::error::{Error, Result};
+use crate::format::decimal::Decimal;
+use crate::format::grid::Grid;
 use crate::format::{Circle, CircleTree, Params, MAX_STEPS};
-use crate::geometry::{orient, Pt, Shape};
-use crate::grid::Grid;
+use crate::geom::{orient, Pt, Shape};
 use crate::parallel;
-use crate::touch;
-use crate::validity::{touch_key, Touches};
 pub use host_check::HostCheck;
 use host_check::{beside, Verdict};
 use repair::{initial_rings, unchecked_parts, verify_and_repair, Context, Outcome, RingState};
@@ -143,45 +145,100 @@ pub fn nice_grid(limit: f64) -> Option<Decimal> {
     Decimal::new(5, k - 1)
 }
 
-/// Encode WKB (Polygon or MultiPolygon) into a circletree value.
-pub fn encode(
-    wkb: &[u8],
-    srid: i32,
-    opts: &Options,
-    interrupt: &mut dyn FnMut(),
-) -> Result<(CircleTree, Report)> {
-    encode_checked(wkb, srid, opts, None, interrupt)
+/// What is known of the input's validity when an encoder is called. An invalid input is refused
+/// with the host's reason ([`Error::InvalidPolygon`]); the encoders do not judge it themselves.
+pub enum Validity<'a> {
+    /// The caller vouches that the input is valid (it checked, or the data is known to be).
+    Valid,
+    /// The caller found it invalid: the reason the error carries (PostGIS's `ST_IsValidReason`).
+    Invalid(&'a str),
+    /// Asked of the host while the encoder runs ([`HostCheck`]).
+    Host(HostCheck<'a>),
 }
 
-/// [`encode`], told by the caller (PostGIS's `ST_IsValidReason`) when the input is not valid.
-pub fn encode_checked(
-    wkb: &[u8],
-    srid: i32,
-    opts: &Options,
-    invalid_reason: Option<&str>,
-    interrupt: &mut dyn FnMut(),
-) -> Result<(CircleTree, Report)> {
-    encode_verdict(
-        wkb,
-        srid,
-        opts,
-        Verdict::Known(invalid_reason),
-        None,
-        interrupt,
-    )
+/// One call of an encoder: the input's SRID, what is known of its validity, and the host's
+/// interrupt check (called often; it may unwind to cancel the call).
+pub struct Call<'a> {
+    /// The SRID the value records.
+    pub srid: i32,
+    /// What is known of the input's validity.
+    pub validity: Validity<'a>,
+    /// The host's interrupt check; `None`: never interrupted.
+    pub interrupt: Option<&'a mut dyn FnMut()>,
 }
 
-/// [`encode_checked`] with the input's validity asked of the host while the encoder runs
-/// (see [`HostCheck`]).
-pub fn encode_host_checked(
+impl<'a> Call<'a> {
+    /// A call on an input known to be valid, never interrupted.
+    pub fn new(srid: i32) -> Self {
+        Call {
+            srid,
+            validity: Validity::Valid,
+            interrupt: None,
+        }
+    }
+
+    /// The same call with this validity.
+    pub fn validity(self, validity: Validity<'a>) -> Self {
+        Call { validity, ..self }
+    }
+
+    /// The same call with this interrupt check.
+    pub fn interrupt(self, interrupt: &'a mut dyn FnMut()) -> Self {
+        Call {
+            interrupt: Some(interrupt),
+            ..self
+        }
+    }
+}
+
+/// What an encoder returns: the value, what it did, and the stored bytes when it wrote them
+/// already (`encode_within` writes them to rank its plans).
+#[derive(Clone, Debug)]
+pub struct Encoded {
+    /// The value.
+    pub value: CircleTree,
+    /// What the encoder did.
+    pub report: Report,
+    bytes: Option<Vec<u8>>,
+}
+
+impl Encoded {
+    /// The value, its stored bytes (`value.to_bytes()`, not written twice) and the report.
+    pub fn into_parts(self) -> (CircleTree, Vec<u8>, Report) {
+        let bytes = self.bytes.unwrap_or_else(|| self.value.to_bytes());
+        (self.value, bytes, self.report)
+    }
+}
+
+/// Runs `f` with the call's validity as the encoder takes it: a host check runs beside it.
+fn with_call<T: Send>(
     wkb: &[u8],
-    srid: i32,
-    opts: &Options,
-    check: HostCheck<impl FnOnce() -> bool, impl FnOnce() -> String>,
-    interrupt: &mut dyn FnMut(),
-) -> Result<(CircleTree, Report)> {
-    beside(wkb, check, interrupt, |verdict, read, i| {
+    call: Call<'_>,
+    f: impl FnOnce(Verdict<'_>, Option<crate::geom::wkb::Input>, &mut dyn FnMut()) -> Result<T> + Send,
+) -> Result<T> {
+    let mut never = || {};
+    let interrupt: &mut dyn FnMut() = match call.interrupt {
+        Some(i) => i,
+        None => &mut never,
+    };
+    match call.validity {
+        Validity::Valid => f(Verdict::Known(None), None, interrupt),
+        Validity::Invalid(reason) => f(Verdict::Known(Some(reason)), None, interrupt),
+        Validity::Host(check) => beside(wkb, check, interrupt, f),
+    }
+}
+
+/// The paper's circles (Moore 2002, sections 3.1-3.5) of a WKB Polygon or MultiPolygon, through
+/// the closed loop: valid, and within `max_error` (continuous Hausdorff) of the input.
+pub fn encode(wkb: &[u8], opts: &Options, call: Call<'_>) -> Result<Encoded> {
+    let srid = call.srid;
+    with_call(wkb, call, |verdict, read, i| {
         encode_verdict(wkb, srid, opts, verdict, read, i)
+    })
+    .map(|(value, report)| Encoded {
+        value,
+        report,
+        bytes: None,
     })
 }
 
@@ -191,7 +248,7 @@ fn encode_verdict(
     srid: i32,
     opts: &Options,
     verdict: Verdict<'_>,
-    read: Option<crate::wkb::Input>,
+    read: Option<crate::geom::wkb::Input>,
     interrupt: &mut dyn FnMut(),
 ) -> Result<(CircleTree, Report)> {
     let max_error = opts.check()?;
@@ -207,56 +264,22 @@ fn encode_verdict(
 /// The fewest bytes within `max_error`: several plans go through the same closed loop as
 /// [`encode`] (so each result is valid and within the bound), and the smallest value is kept. A
 /// plan is priced before its loop runs, and a plan whose price is not below the best result so far
-/// is not run (the same bytes as running all of them on every polygon of `tests/data`, both sets,
-/// at 10, 25 and 100 m; a third of the time).
+/// is not run (the same bytes as running all of them).
 ///
 /// Every plan keeps points only: the fewest vertices whose stored (rounded) shortcuts stay within
-/// max_error of the ring ([`crate::min_points`]), on grids of [`WITHIN_GRIDS`] times max_error.
+/// max_error of the ring ([`min_points`]), on grids of [`WITHIN_GRIDS`] times max_error.
 /// Where vertices are far apart (GSHHG's ~180 m) almost every one is kept and the coarsest grid
-/// wins; where they are dense (LINZ at 100 m) a finer grid skips more. The paper's circles, stored
-/// by their centres, never won a polygon of the corpus at the same bound (measured as a fourth
-/// plan: 48 bytes of 264,331 at 25 m, before the rounding was measured), so they are not tried.
-pub fn encode_within(
-    wkb: &[u8],
-    srid: i32,
-    max_error: f64,
-    invalid_reason: Option<&str>,
-    interrupt: &mut dyn FnMut(),
-) -> Result<(CircleTree, Report)> {
-    encode_within_stored(wkb, srid, max_error, invalid_reason, interrupt)
-        .map(|(ct, _, report)| (ct, report))
-}
-
-/// [`encode_within`] with the value's stored bytes (`ct.to_bytes()`), which it has written
-/// already to rank the plans: a caller that stores the value need not write it again.
-pub fn encode_within_stored(
-    wkb: &[u8],
-    srid: i32,
-    max_error: f64,
-    invalid_reason: Option<&str>,
-    interrupt: &mut dyn FnMut(),
-) -> Result<(CircleTree, Vec<u8>, Report)> {
-    within_verdict(
-        wkb,
-        srid,
-        max_error,
-        Verdict::Known(invalid_reason),
-        None,
-        interrupt,
-    )
-}
-
-/// [`encode_within_stored`] with the input's validity asked of the host while the encoder runs
-/// (see [`HostCheck`]).
-pub fn encode_within_host_checked(
-    wkb: &[u8],
-    srid: i32,
-    max_error: f64,
-    check: HostCheck<impl FnOnce() -> bool, impl FnOnce() -> String>,
-    interrupt: &mut dyn FnMut(),
-) -> Result<(CircleTree, Vec<u8>, Report)> {
-    beside(wkb, check, interrupt, |verdict, read, i| {
+/// wins; where they are dense (LINZ at 100 m) a finer grid skips more. The paper's circles are not
+/// tried (`docs/decisions/points-over-circles.md`).
+pub fn encode_within(wkb: &[u8], max_error: f64, call: Call<'_>) -> Result<Encoded> {
+    let srid = call.srid;
+    with_call(wkb, call, |verdict, read, i| {
         within_verdict(wkb, srid, max_error, verdict, read, i)
+    })
+    .map(|(value, bytes, report)| Encoded {
+        value,
+        report,
+        bytes: Some(bytes),
     })
 }
 
@@ -265,7 +288,7 @@ fn within_verdict(
     srid: i32,
     max_error: f64,
     verdict: Verdict<'_>,
-    read: Option<crate::wkb::Input>,
+    read: Option<crate::geom::wkb::Input>,
     interrupt: &mut dyn FnMut(),
 ) -> Result<(CircleTree, Vec<u8>, Report)> {
     positive("max_error", max_error)?;
@@ -507,10 +530,14 @@ struct Prepared {
     dropped_zm: bool,
 }
 
-fn prepare(wkb: &[u8], verdict: Verdict<'_>, read: Option<crate::wkb::Input>) -> Result<Prepared> {
+fn prepare(
+    wkb: &[u8],
+    verdict: Verdict<'_>,
+    read: Option<crate::geom::wkb::Input>,
+) -> Result<Prepared> {
     let input = match read {
         Some(input) => input,
-        None => crate::wkb::read(wkb)?,
+        None => crate::geom::wkb::read(wkb)?,
     };
     match verdict {
         Verdict::Known(Some(reason)) => return Err(Error::InvalidPolygon(reason.to_string())),
@@ -756,10 +783,10 @@ mod tests {
             "{e}"
         );
     }
-    use crate::geometry::Kind;
+    use crate::geom::Kind;
 
     fn wkb_of(parts: Vec<Vec<Vec<Pt>>>) -> Vec<u8> {
-        crate::wkb::write(Kind::Polygon, &parts)
+        crate::geom::wkb::write(Kind::Polygon, &parts)
     }
 
     fn opts(min_radius: f64, dp: Option<f64>) -> Options {
@@ -787,7 +814,9 @@ mod tests {
             [100.0, 100.0],
             [0.0, 100.0],
         ]]];
-        let (ct, _) = encode(&wkb_of(sq), 0, &opts(5.0, Some(1.0)), &mut || {}).unwrap();
+        let ct = encode(&wkb_of(sq), &opts(5.0, Some(1.0)), Call::new(0))
+            .unwrap()
+            .value;
         let ring = &ct.parts[0][0];
         assert_eq!(ring.len(), 4, "{ring:?}");
         assert!(ring.iter().all(|c| c.r == 0));
@@ -802,13 +831,13 @@ mod tests {
                 [500000.0 + 100.0 * t.cos(), 6000000.0 + 100.0 * t.sin()]
             })
             .collect();
-        let (ct, _) = encode(
+        let ct = encode(
             &wkb_of(vec![vec![disc]]),
-            32760,
             &opts(5.0, None),
-            &mut || {},
+            Call::new(32760),
         )
-        .unwrap();
+        .unwrap()
+        .value;
         let ring = &ct.parts[0][0];
         assert!(ring.len() <= 2, "{ring:?}");
         assert!(ring.iter().all(|c| c.r > 0));
@@ -817,7 +846,7 @@ mod tests {
     #[test]
     fn bad_parameters_name_themselves() {
         let sq = wkb_of(vec![vec![vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]]]]);
-        let e = encode(&sq, 0, &opts(0.0, None), &mut || {}).unwrap_err();
+        let e = encode(&sq, &opts(0.0, None), Call::new(0)).unwrap_err();
         assert!(matches!(
             e,
             Error::InvalidParameter {
@@ -827,12 +856,11 @@ mod tests {
         ));
         let e = encode(
             &sq,
-            0,
             &Options {
                 overlap: 1.5,
                 ..opts(1.0, None)
             },
-            &mut || {},
+            Call::new(0),
         )
         .unwrap_err();
         assert!(matches!(
@@ -842,7 +870,7 @@ mod tests {
                 ..
             }
         ));
-        let e = encode(&sq, 0, &opts(1.0, Some(-1.0)), &mut || {}).unwrap_err();
+        let e = encode(&sq, &opts(1.0, Some(-1.0)), Call::new(0)).unwrap_err();
         assert!(matches!(
             e,
             Error::InvalidParameter {

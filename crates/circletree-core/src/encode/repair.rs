@@ -6,15 +6,17 @@
 
 use super::initial::{initial_entries, Entry};
 use super::{Options, Report};
-use crate::arcs;
+use crate::check::arcs;
+use crate::check::metrics::{segment_max, Capsules};
+use crate::check::validity::{point_in_ring, problems_where, RingRef, Touches};
+use crate::decode::reconstruct::{
+    for_each_span, for_each_span_in, stroke_span, stroke_spans, Span,
+};
 use crate::error::Result;
+use crate::format::grid::Grid;
 use crate::format::Circle;
-use crate::geometry::{dist2_to_segment, signed_area, Pt, Shape};
-use crate::grid::Grid;
-use crate::metrics::{segment_max, Capsules};
+use crate::geom::{dist2_to_segment, signed_area, Pt, Shape};
 use crate::parallel;
-use crate::reconstruct::{for_each_span, for_each_span_in, stroke_span, stroke_spans, Span};
-use crate::validity::{point_in_ring, problems_where, RingRef, Touches};
 use rstar::primitives::Line;
 use rstar::RTree;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -31,7 +33,7 @@ pub(super) struct RingState {
     starts: Vec<usize>,
     /// The rebuilt pieces (true arcs), for [`arcs::problems`]; none when no ring of the value
     /// has a circle with a radius (every piece is then a segment of `recon`).
-    spans: crate::reconstruct::Spans,
+    spans: crate::decode::reconstruct::Spans,
     /// Spans whose stroke may differ from the last check.
     dirty: Vec<bool>,
     /// The stroke of a long ring's second half while it is rebuilt on a thread of its own.
@@ -348,7 +350,7 @@ const REBUILD_APART: u64 = 20_000;
 /// `pts` and `ids`, whose allocations are reused (a round rebuilds every changed ring, and a
 /// fresh vector of a large ring is page faults).
 fn stroke_dedup(
-    spans: &crate::reconstruct::Spans,
+    spans: &crate::decode::reconstruct::Spans,
     tol: f64,
     pts: &mut Vec<Pt>,
     ids: &mut Vec<u32>,
@@ -708,12 +710,12 @@ fn stroke_failures(
             })
             .collect();
         // Where every segment is new (a first round), a proof that the rebuild is valid
-        // without a touch anywhere ([`crate::proof`]) is several times quicker than looking for
+        // without a touch anywhere ([`crate::check::proof`]) is several times quicker than looking for
         // problems, and when it holds there are none to find (it is stricter in every respect:
         // no two rings touch at all, and every side is decided beyond doubt).
         let proved = changed.iter().all(|c| c.iter().all(|&x| x))
             && refs.iter().all(|r| signed_area(r.pts) != 0.0)
-            && crate::proof::proves_rings(
+            && crate::check::proof::proves_rings(
                 &refs.iter().map(|r| r.pts).collect::<Vec<_>>(),
                 &refs
                     .iter()

@@ -17,14 +17,20 @@
 //! Decoding trusts no count: a count is checked against the bytes that remain before anything is
 //! allocated for it, every sum is checked for overflow, and every field is range-checked.
 
-use crate::decimal::Decimal;
 use crate::error::{Error, Result};
-use crate::geometry::Kind;
+use crate::geom::Kind;
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 
-pub mod v1;
-pub mod v2;
+pub(crate) mod coder;
+pub(crate) mod decimal;
+pub(crate) mod grid;
+pub(crate) mod text;
+pub(crate) mod v1;
+pub(crate) mod v2;
+
+pub use decimal::Decimal;
+pub use text::{from_text, to_text};
 
 /// The version byte written by this release.
 pub const FORMAT_VERSION: u8 = 2;
@@ -215,7 +221,7 @@ impl CircleTree {
 
     /// Bounds on `to_bytes().len()`, without coding the circles (the header is written: it is a
     /// few dozen bytes). Exact for format version 1; for version 2 within a few bytes plus a
-    /// few in ten thousand of the stream ([`crate::coder::Meter::bytes`]).
+    /// few in ten thousand of the stream ([`crate::format::coder::Meter::bytes`]).
     pub fn size_bounds(&self) -> (usize, usize) {
         if self.version == 1 {
             let n = self.to_bytes().len();
@@ -380,7 +386,7 @@ impl CircleTree {
         let mut r = Reader { buf: bytes };
         let (ct, _) = Self::read_header(&mut r)?;
         ct.validate_header()?;
-        let g = crate::grid::Grid::new(ct.grid);
+        let g = crate::format::grid::Grid::new(ct.grid);
         let m = ct.params.max_error.to_f64();
         Ok((
             ct.srid,

@@ -1,5 +1,5 @@
 //! Format version 2: the same header as version 1, then one range-coded stream
-//! ([`crate::coder`]) holding every count and every circle.
+//! ([`crate::format::coder`]) holding every count and every circle.
 //!
 //! ```text
 //! stream: per part: nrings − 1; per ring: ncircles            (the counts model)
@@ -13,8 +13,8 @@
 //! deltas from the bounding box and the number of circles, the radii from `min_radius`.
 
 use super::{Circle, Cursor};
-use crate::coder::{class, Bit, IntModel, Meter, Reader, Sink, Writer};
 use crate::error::{Error, Result};
+use crate::format::coder::{class, Bit, IntModel, Meter, Reader, Sink, Writer};
 
 /// Adaptive models of the stream, in their starting state for a value.
 pub struct Models {

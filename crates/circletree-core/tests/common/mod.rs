@@ -1,7 +1,7 @@
 //! Shared by the integration tests and benches: the real polygons shipped in tests/data.
 #![allow(dead_code)]
 
-use circletree_core::encode::{encode, encode_within, Options, Report};
+use circletree_core::encode::{encode, encode_within, Call, Options, Report};
 use circletree_core::format::CircleTree;
 use std::io::Read;
 use std::str::FromStr;
@@ -14,7 +14,7 @@ pub fn encode_at(
     within: bool,
 ) -> circletree_core::Result<(CircleTree, Report)> {
     if within {
-        return encode_within(&s.wkb, s.srid, t, None, &mut || {});
+        return encode_within(&s.wkb, t, Call::new(s.srid)).map(|e| (e.value, e.report));
     }
     let o = Options {
         min_radius: t / 2.0,
@@ -22,7 +22,7 @@ pub fn encode_at(
         dp_tolerance: Some(t),
         max_error: None,
     };
-    encode(&s.wkb, s.srid, &o, &mut || {})
+    encode(&s.wkb, &o, Call::new(s.srid)).map(|e| (e.value, e.report))
 }
 
 /// One real polygon: name, SRID, ST_NPoints, WKB.

@@ -9,14 +9,14 @@
 //! PostGIS's `ST_HausdorffDistance` is discrete (vertices only) and can only be lower.
 
 use crate::format::CircleTree;
-use crate::geometry::{dist, dist2_to_segment, dist_to_segment, Polygon, Pt};
+use crate::geom::{dist, dist2_to_segment, Polygon, Pt};
 use geo::{Area, BooleanOps};
 use rstar::primitives::Line;
 use rstar::{PointDistance, RTree};
 
 /// Sliver area: area of the symmetric difference of two polygon sets.
 pub fn sliver_area(a: &[Polygon], b: &[Polygon]) -> f64 {
-    let (ga, gb) = (crate::wkb::to_geo(a), crate::wkb::to_geo(b));
+    let (ga, gb) = (crate::geom::wkb::to_geo(a), crate::geom::wkb::to_geo(b));
     ga.xor(&gb).unsigned_area()
 }
 
@@ -50,7 +50,8 @@ where
 }
 
 /// The largest distance from a point of segment `a-b` to the segments of `to` (a short list,
-/// searched by brute force), or `floor` if that is larger, to within `eps`.
+/// searched by brute force), or `floor` if that is larger, to within `eps` (the tests' reference).
+#[cfg(test)]
 pub fn segment_max_in(to: &[(Pt, Pt)], a: Pt, b: Pt, floor: f64, eps: f64) -> f64 {
     segment_max_by(
         |p| {
@@ -62,7 +63,7 @@ pub fn segment_max_in(to: &[(Pt, Pt)], a: Pt, b: Pt, floor: f64, eps: f64) -> f6
         },
         |&i, a, b| {
             let (c, d) = to[i];
-            dist_to_segment(a, c, d).max(dist_to_segment(b, c, d))
+            crate::geom::dist_to_segment(a, c, d).max(crate::geom::dist_to_segment(b, c, d))
         },
         a,
         b,
@@ -93,6 +94,7 @@ struct CapSeg {
 
 impl Capsules {
     /// The capsules of radius `r` around the segments `to`.
+    #[cfg(test)]
     pub fn new(to: &[(Pt, Pt)], r: f64) -> Capsules {
         let mut caps = Capsules::default();
         caps.refill(to, r);

@@ -1,11 +1,16 @@
 //! From a stored value back to geometry: circles on the grid to coordinates, rings rebuilt with
-//! [`crate::reconstruct`], stroked to a chord tolerance (WKB) or kept as true arcs (curved WKT).
+//! [`crate::decode::reconstruct`], stroked to a chord tolerance (WKB) or kept as true arcs (curved WKT).
 
+pub(crate) mod picture;
+pub(crate) mod reconstruct;
+
+pub use picture::to_svg;
+
+use crate::decode::reconstruct::{point_ring, ring_wkt, stroke_ring};
 use crate::error::{Error, Result};
+use crate::format::grid::Grid;
 use crate::format::{Circle, CircleTree};
-use crate::geometry::{Kind, Polygon, Pt};
-use crate::grid::Grid;
-use crate::reconstruct::{point_ring, ring_wkt, stroke_ring};
+use crate::geom::{Kind, Polygon, Pt};
 
 /// Grid steps to coordinates: `q × mantissa / 10^k` in one correctly rounded operation.
 /// The value's grid ([`Grid::coord`] is the one conversion every reader and writer uses).
@@ -21,7 +26,7 @@ pub fn ring_circles(ct: &CircleTree, ring: &[Circle]) -> Vec<[f64; 3]> {
 }
 
 /// Below this fraction of a value's largest radius an arc tolerance may need more chords than
-/// [`crate::reconstruct::MAX_ARC_SEGMENTS`] on some arc (a full circle stroked at it takes 4,056),
+/// [`crate::decode::reconstruct::MAX_ARC_SEGMENTS`] on some arc (a full circle stroked at it takes 4,056),
 /// so the arcs themselves are measured ([`finest_tolerance`]).
 pub const MIN_TOLERANCE_PER_RADIUS: f64 = 3e-7;
 
@@ -29,12 +34,12 @@ pub const MIN_TOLERANCE_PER_RADIUS: f64 = 3e-7;
 pub fn finest_tolerance(ct: &CircleTree) -> f64 {
     let mut worst = 0.0f64;
     for ring in ct.parts.iter().flatten() {
-        for seg in crate::reconstruct::ring_spans(&ring_circles(ct, ring))
+        for seg in crate::decode::reconstruct::ring_spans(&ring_circles(ct, ring))
             .iter()
             .flatten()
         {
-            if let crate::reconstruct::Seg::Arc { r, sweep, .. } = *seg {
-                let step = sweep.abs() / (crate::reconstruct::MAX_ARC_SEGMENTS - 1) as f64;
+            if let crate::decode::reconstruct::Seg::Arc { r, sweep, .. } = *seg {
+                let step = sweep.abs() / (crate::decode::reconstruct::MAX_ARC_SEGMENTS - 1) as f64;
                 worst = worst.max(r * (1.0 - (step / 2.0).cos()));
             }
         }
@@ -93,7 +98,7 @@ pub fn arc_tolerance(ct: &CircleTree, tol: Option<f64>) -> Result<f64> {
                 "at least {} for this value (finer, an arc of one of its circles would need more \
                  than {} chords)",
                 crate::error::number(finest),
-                crate::reconstruct::MAX_ARC_SEGMENTS
+                crate::decode::reconstruct::MAX_ARC_SEGMENTS
             ),
         }),
     }
@@ -135,7 +140,7 @@ pub fn stroked_points(ct: &CircleTree, tol: f64) -> usize {
     let g = ct.grid_f64();
     let whole: usize = circles()
         .map(|c| {
-            1 + crate::reconstruct::arc_segments(
+            1 + crate::decode::reconstruct::arc_segments(
                 c.r.unsigned_abs() as f64 * g,
                 std::f64::consts::TAU,
                 tol,
@@ -147,14 +152,14 @@ pub fn stroked_points(ct: &CircleTree, tol: f64) -> usize {
     }
     let mut n = 0usize;
     for ring in ct.parts.iter().flatten() {
-        for seg in crate::reconstruct::ring_spans(&ring_circles(ct, ring))
+        for seg in crate::decode::reconstruct::ring_spans(&ring_circles(ct, ring))
             .iter()
             .flatten()
         {
             n = n.saturating_add(match *seg {
-                crate::reconstruct::Seg::Line(..) => 1,
-                crate::reconstruct::Seg::Arc { r, sweep, .. } => {
-                    crate::reconstruct::arc_segments(r, sweep, tol)
+                crate::decode::reconstruct::Seg::Line(..) => 1,
+                crate::decode::reconstruct::Seg::Arc { r, sweep, .. } => {
+                    crate::decode::reconstruct::arc_segments(r, sweep, tol)
                 }
             });
         }
@@ -190,7 +195,11 @@ pub fn to_ewkb(ct: &CircleTree, tol: Option<f64>) -> Result<Vec<u8>> {
 fn rebuilt_ewkb(ct: &CircleTree, tol: Option<f64>, srid: i32) -> Result<Vec<u8>> {
     let tol = arc_tolerance(ct, tol)?;
     check_size(ct, tol)?;
-    Ok(crate::wkb::write_ewkb(ct.kind, &polygons(ct, tol), srid))
+    Ok(crate::geom::wkb::write_ewkb(
+        ct.kind,
+        &polygons(ct, tol),
+        srid,
+    ))
 }
 
 /// The envelope of a stored value as EWKB, from its header alone ([`CircleTree::envelope`]): a
@@ -199,7 +208,7 @@ fn rebuilt_ewkb(ct: &CircleTree, tol: Option<f64>, srid: i32) -> Result<Vec<u8>>
 pub fn envelope_ewkb(bytes: &[u8]) -> Result<Vec<u8>> {
     let (srid, bbox) = CircleTree::envelope(bytes)?;
     let ring = bbox.map(|[x0, y0, x1, y1]| vec![vec![[x0, y0], [x1, y0], [x1, y1], [x0, y1]]]);
-    Ok(crate::wkb::write_ewkb(
+    Ok(crate::geom::wkb::write_ewkb(
         Kind::Polygon,
         &ring.into_iter().collect::<Vec<_>>(),
         srid,
@@ -255,7 +264,7 @@ pub fn to_curved_wkt(ct: &CircleTree) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::reconstruct::{arc_segments, MAX_ARC_SEGMENTS};
+    use crate::decode::reconstruct::{arc_segments, MAX_ARC_SEGMENTS};
 
     #[test]
     fn ewkb_carries_the_srid_once() {
@@ -265,14 +274,14 @@ mod tests {
             (Kind::Polygon, vec![poly.clone()], 3),
             (Kind::Polygon, vec![], 3),
         ] {
-            let wkb = crate::wkb::write(kind, &parts);
-            let e = crate::wkb::write_ewkb(kind, &parts, 32760);
+            let wkb = crate::geom::wkb::write(kind, &parts);
+            let e = crate::geom::wkb::write_ewkb(kind, &parts, 32760);
             assert_eq!(e.len(), wkb.len() + 4);
             assert_eq!(&e[1..5], &(code | 0x2000_0000).to_le_bytes());
             assert_eq!(&e[5..9], &32760i32.to_le_bytes());
             // the nested polygons carry no SRID: the rest is the WKB's
             assert_eq!(&e[9..], &wkb[5..]);
-            assert_eq!(crate::wkb::write_ewkb(kind, &parts, 0), wkb);
+            assert_eq!(crate::geom::wkb::write_ewkb(kind, &parts, 0), wkb);
         }
     }
 
@@ -283,7 +292,7 @@ mod tests {
             assert!(k < MAX_ARC_SEGMENTS, "{k} chords for radius {r}");
         }
         // one circle, its whole boundary one arc of radius 100
-        let ct = crate::text::from_text(
+        let ct = crate::format::text::from_text(
             "CIRCLETREE(version=2;grid=0.5;min_radius=5;overlap=0.4;dp_tolerance=NULL;max_error=5;\
              vertices=5;wkb_bytes=93;repaired=0;bbox=(0 0,200 200);POLYGON((100 100 100)))",
         )
@@ -307,7 +316,7 @@ mod tests {
         // 30,000 parts, each one circle of radius 1,000,000: about 2,221 chords each at the grid
         let disc = "(1000000 1000000 1000000)";
         let parts = vec![format!("({disc})"); 30_000].join(",");
-        let ct = crate::text::from_text(&format!(
+        let ct = crate::format::text::from_text(&format!(
             "CIRCLETREE(version=2;grid=1;min_radius=5;overlap=0.4;dp_tolerance=NULL;max_error=5;\
              vertices=5;wkb_bytes=93;repaired=0;bbox=(0 0,2000000 2000000);MULTIPOLYGON({parts}))"
         ))
@@ -319,7 +328,7 @@ mod tests {
         assert!(err.to_string().contains("60000000"), "{err}");
         // coarser, it decodes; the count bounds what is built
         assert!(stroked_points(&ct, 10_000.0) < MAX_DECODED_POINTS);
-        let few = crate::text::from_text(&format!(
+        let few = crate::format::text::from_text(&format!(
             "CIRCLETREE(version=2;grid=1;min_radius=5;overlap=0.4;dp_tolerance=NULL;max_error=5;\
              vertices=5;wkb_bytes=93;repaired=0;bbox=(0 0,2000000 2000000);MULTIPOLYGON(({disc})))"
         ))

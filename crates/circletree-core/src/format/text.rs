@@ -11,10 +11,10 @@
 //! `POLYGON EMPTY` and has no `bbox`. Keywords are case-insensitive and blanks are allowed
 //! between tokens.
 
-use crate::decimal::Decimal;
 use crate::error::{Error, Result};
+use crate::format::decimal::Decimal;
 use crate::format::{Circle, CircleTree, Params, VERSIONS};
-use crate::geometry::Kind;
+use crate::geom::Kind;
 use std::fmt::Write;
 
 fn coord(out: &mut String, grid: Decimal, q: i64) {

@@ -3,7 +3,7 @@
 //! "not proved" (`false`) for everything else, which the caller then asks the host about:
 //!
 //! - every ring as it was given (closed, at least four points, no repeated point: see
-//!   [`crate::wkb::Input::as_given`]; the caller checks that);
+//!   [`crate::geom::wkb::Input::as_given`]; the caller checks that);
 //! - no two segments of any rings share a point, except consecutive segments of one ring at their
 //!   common vertex, which do not fold back onto each other: so no ring crosses or touches itself
 //!   or another ring, and every ring encloses area;
@@ -13,7 +13,7 @@
 //! With no ring touching another, the interior is connected and that is every rule GEOS checks
 //! (`IsValidOp`: coordinates, ring size, self-intersection, ring crossings and touches, holes in
 //! shell, nested holes, disconnected interior, nested shells). Non-finite coordinates never get
-//! here: [`crate::wkb::read`] refuses them.
+//! here: [`crate::geom::wkb::read`] refuses them.
 //!
 //! *Decided beyond doubt*: every predicate is the sign of an orientation determinant computed in
 //! floating point and taken only when it exceeds a bound thousands of times the determinant's
@@ -25,14 +25,14 @@
 //!
 //! *Fast*: segments are grouped into monotone chains (consecutive segments whose directions
 //! all lie in one closed quadrant; within such a chain only neighbours can meet, and they
-//! cannot fold back), chains whose boxes meet are paired by [`crate::box_grid`], and two chains'
+//! cannot fold back), chains whose boxes meet are paired by [`crate::geom::box_grid`], and two chains'
 //! segments are paired by one merge along x (both chains are monotone in x). This is GEOS's own
 //! way of finding the pairs (monotone chains), without its noding. A coastline's chains are
 //! short (137,000 for the 306,000 vertices of `tests/data`), so the grid's lookups are most of
 //! the time: about 28 ms for that set on one thread against `ST_IsValid`'s 75-78 ms.
 
-use crate::box_grid::{Bbox, BoxIndex};
-use crate::geometry::{Pt, Shape};
+use crate::geom::box_grid::{Bbox, BoxIndex};
+use crate::geom::{Pt, Shape};
 
 /// How far beyond its rounding error a determinant must be to be trusted: the error of the
 /// floating-point determinant is below 3.3e-16 of the sum of its two products' magnitudes
@@ -353,8 +353,8 @@ fn locate_many(rings: &[&[Pt]], queries: &[(usize, Pt)]) -> Option<Vec<bool>> {
     Some(out)
 }
 
-/// Is `shape` (open rings, as [`crate::wkb::read`] returns them from an input it read
-/// [`as given`](crate::wkb::Input::as_given)) valid beyond doubt? `false` means "not proved",
+/// Is `shape` (open rings, as [`crate::geom::wkb::read`] returns them from an input it read
+/// [`as given`](crate::geom::wkb::Input::as_given)) valid beyond doubt? `false` means "not proved",
 /// not "invalid". `interrupt` is called now and then.
 pub fn proves_valid(shape: &Shape, interrupt: &mut dyn FnMut()) -> bool {
     // every ring, with its part and whether it is a shell
@@ -469,7 +469,7 @@ pub fn proves_rings(rings: &[&[Pt]], owner: &[(usize, bool)], interrupt: &mut dy
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::Kind;
+    use crate::geom::Kind;
 
     fn shape(parts: Vec<Vec<Vec<Pt>>>) -> Shape {
         Shape {
@@ -626,7 +626,7 @@ mod tests {
             use geo::Validation;
             let ring = |v: &[(i32, i32)]| -> Vec<Pt> {
                 let mut r: Vec<Pt> = v.iter().map(|&(x, y)| [x as f64, y as f64]).collect();
-                crate::geometry::dedup_ring(&mut r);
+                crate::geom::dedup_ring(&mut r);
                 r
             };
             let (ra, rb) = (ring(&a), ring(&b));
@@ -639,7 +639,7 @@ mod tests {
                 }
                 let sh = shape(parts);
                 if proves_valid(&sh, &mut || {}) {
-                    let g = crate::wkb::to_geo(&sh.parts);
+                    let g = crate::geom::wkb::to_geo(&sh.parts);
                     proptest::prop_assert!(g.is_valid(), "proved but invalid: {:?}", sh.parts);
                 }
             }

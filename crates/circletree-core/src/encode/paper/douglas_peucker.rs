@@ -2,7 +2,7 @@
 //! Iterative with an explicit stack, so a million vertices cannot overflow the call stack.
 //! Cost: O(n log n) typical, O(n²) worst case.
 
-use crate::geometry::{dist, dist_to_segment, Pt};
+use crate::geom::{dist, dist_to_segment, Pt};
 
 /// Indices of the ring vertices Douglas-Peucker keeps at `tol`, ascending. The ring is open; it
 /// is split at vertex 0 and at the vertex farthest from it, and each half simplified.

@@ -10,7 +10,7 @@
 //! rounding)` of the chain: the ring runs inside the band around each shortcut from near one end
 //! to near the other.
 
-use crate::geometry::{dist_to_segment, Pt};
+use crate::geom::{dist_to_segment, Pt};
 
 /// Longest shortcut, in vertices, that is looked for.
 const WINDOW: usize = 256;
@@ -35,8 +35,7 @@ pub fn keep(
         // vertex 0 and the vertex farthest from it, as Douglas-Peucker splits a ring
         let far = (1..n)
             .max_by(|&a, &b| {
-                crate::geometry::dist(ring[0], ring[a])
-                    .total_cmp(&crate::geometry::dist(ring[0], ring[b]))
+                crate::geom::dist(ring[0], ring[a]).total_cmp(&crate::geom::dist(ring[0], ring[b]))
             })
             .unwrap_or(n / 2);
         anchors = vec![0, far];
@@ -386,7 +385,7 @@ mod tests {
             .collect();
         for tol in [1.0, 10.0, 40.0, 150.0] {
             let ours = keep(&ring, tol, &[], &|p| p, &mut || {});
-            let dp = crate::douglas_peucker::keep(&ring, tol);
+            let dp = crate::encode::paper::douglas_peucker::keep(&ring, tol);
             assert!(within(&ring, &ours, tol), "{tol}");
             assert!(
                 ours.len() <= dp.len(),

@@ -6,7 +6,7 @@
 use crate::decode;
 use crate::error::{Error, Result};
 use crate::format::CircleTree;
-use crate::geometry::{Polygon, Pt};
+use crate::geom::{Polygon, Pt};
 use svg::node::element::path::Data;
 use svg::node::element::{Circle, Group, Line, Path, Rectangle, Text};
 use svg::Document;
@@ -213,7 +213,7 @@ mod tests {
 
     #[test]
     fn draws_every_circle_and_the_legend() {
-        let ct = crate::text::from_text(
+        let ct = crate::format::text::from_text(
             "CIRCLETREE(version=2;grid=0.5;min_radius=5;overlap=0.4;dp_tolerance=NULL;max_error=5;\
              vertices=5;wkb_bytes=93;repaired=0;bbox=(0 0,100 100);\
              POLYGON((20 20 10,80 20 0,80 80 -5,20 80 0)))",

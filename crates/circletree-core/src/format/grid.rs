@@ -3,7 +3,7 @@
 //! [`Grid::coord`]: `q × mantissa / 10^k` (or `× 10^k`) in one correctly rounded operation, never
 //! `q × step` (which differs in the last bit on grids such as 0.1).
 
-use crate::decimal::Decimal;
+use crate::format::decimal::Decimal;
 
 /// Smallest and largest grid exponent a stored value may have (`step` in 1e-12 ..= 9e12).
 pub const MIN_EXP: i8 = -12;
@@ -36,11 +36,6 @@ impl Grid {
     /// Can a stored value have this step?
     pub fn storable(step: Decimal) -> bool {
         step.mantissa > 0 && (MIN_EXP..=MAX_EXP).contains(&step.exp)
-    }
-
-    /// The step as an exact decimal.
-    pub fn step(&self) -> Decimal {
-        self.step
     }
 
     /// The step as the nearest `f64`.

@@ -5,7 +5,7 @@
 //! repeated points removed. Writing produces ISO WKB (little endian, 2D).
 
 use crate::error::{Error, Result};
-use crate::geometry::{dedup_ring, Kind, Polygon, Ring, Shape};
+use crate::geom::{dedup_ring, Kind, Polygon, Ring, Shape};
 use geo_traits::{
     CoordTrait, GeometryTrait, GeometryType, LineStringTrait, MultiPolygonTrait, PolygonTrait,
 };
@@ -18,7 +18,7 @@ pub struct Input {
     /// True when the input had Z or M values, which were dropped.
     pub dropped_zm: bool,
     /// True when every ring was read as it was given: closed, at least four points, no point
-    /// repeated in a row, no empty ring or part left out (what [`crate::proof`] may be asked).
+    /// repeated in a row, no empty ring or part left out (what [`crate::check::proof`] may be asked).
     pub as_given: bool,
 }
 

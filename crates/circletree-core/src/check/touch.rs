@@ -5,10 +5,10 @@
 //! that every ring rebuilds through the same grid point and none is moved into another.
 //!
 //! Exact predicates decide "lies on an edge", as GEOS does for `ST_IsValid`. Segments are found
-//! with [`crate::box_grid`]: two linear passes to build, a cell or a few per vertex looked up.
+//! with [`crate::geom::box_grid`]: two linear passes to build, a cell or a few per vertex looked up.
 
-use crate::box_grid::BoxIndex;
-use crate::geometry::{Pt, Shape};
+use crate::geom::box_grid::BoxIndex;
+use crate::geom::{Pt, Shape};
 use robust::{orient2d, Coord};
 use rustc_hash::FxHashMap;
 
@@ -134,7 +134,7 @@ pub fn pin(shape: &mut Shape) -> (Vec<Vec<Vec<usize>>>, Vec<Pt>) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::Kind;
+    use crate::geom::Kind;
 
     #[test]
     fn corner_touch_and_hole_on_an_edge() {

@@ -1,4 +1,4 @@
-//! Validity of the true arcs. [`crate::validity`] checks the rings stroked at the grid step; this
+//! Validity of the true arcs. [`crate::check::validity`] checks the rings stroked at the grid step; this
 //! module checks what lies between those chords and the arcs they stand for, so that the value is
 //! valid however finely it is stroked (`ct_decode(ct, tol)` for any `tol` up to the grid step) and
 //! as true arcs (`ct_decode_curved`):
@@ -13,15 +13,15 @@
 //! its whole ring (the last test). Ends of pieces closer than `eps` count as meeting, so floating
 //! point rounding can only make the check stricter, never let a touch through.
 
-use crate::box_grid::{union, Bbox, BoxIndex, EMPTY};
-use crate::geometry::{dist2_to_segment, Pt};
-use crate::reconstruct::{arc_segments, Seg, Spans};
+use crate::decode::reconstruct::{arc_segments, Seg, Spans};
+use crate::geom::box_grid::{union, Bbox, BoxIndex, EMPTY};
+use crate::geom::{dist2_to_segment, Pt};
 use std::f64::consts::TAU;
 
 /// A ring's rebuilt pieces: its part, its index in the part, its spans, and whether each span
 /// changed since the last check that found nothing (`None`: all did).
 pub struct ArcRing<'a> {
-    /// The spans ([`crate::reconstruct::ring_spans`]).
+    /// The spans ([`crate::decode::reconstruct::ring_spans`]).
     pub spans: &'a Spans,
     /// `dirty[s]`: span `s` may differ from the last check.
     pub dirty: Option<&'a [bool]>,
@@ -496,7 +496,7 @@ fn in_sliver(p: Pt, c: Pt, r: f64, a0: f64, sweep: f64, tol: f64, eps: f64) -> b
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::reconstruct::ring_spans;
+    use crate::decode::reconstruct::ring_spans;
 
     fn check(rings: &[Vec<[f64; 3]>]) -> Vec<(usize, usize)> {
         let spans: Vec<Spans> = rings.iter().map(|c| ring_spans(c)).collect();

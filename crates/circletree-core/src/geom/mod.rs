@@ -4,6 +4,9 @@
 //! polygon's interior is on its left: shells counter-clockwise, holes clockwise. The encoder relies
 //! on that: a circle with positive radius lies on the left of the ring (inside the polygon).
 
+pub(crate) mod box_grid;
+pub mod wkb;
+
 /// A point `[x, y]`.
 pub type Pt = [f64; 2];
 /// An open ring: the closing point is implied.

@@ -15,9 +15,9 @@
 //! Internal circles touching no boundary cannot survive step 2. Cost: O(c·k + c log c) for c
 //! candidates and runs of k edges, with a hashed grid of the kept circles.
 
-use crate::geometry::{dist, Pt};
-use crate::grid::round_i64;
-use crate::medial::Candidate;
+use crate::encode::paper::medial::Candidate;
+use crate::format::grid::round_i64;
+use crate::geom::{dist, Pt};
 use std::hash::BuildHasher;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -339,7 +339,7 @@ pub fn map_runs(
 }
 
 /// [`map_runs`] of the candidates of two lists, one after the other (as
-/// [`crate::medial::candidate_lists`] gives them).
+/// [`crate::encode::paper::medial::candidate_lists`] gives them).
 pub fn map_runs_of(
     ring: &[Pt],
     lists: [&[Candidate]; 2],
@@ -911,7 +911,7 @@ impl KeptGrid {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::medial::candidates;
+    use crate::encode::paper::medial::candidates;
     use proptest::prelude::*;
 
     /// [`Merged`] takes two key-sorted lists in the order one sort of both gives.

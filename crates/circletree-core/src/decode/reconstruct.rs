@@ -19,7 +19,7 @@
 //!
 //! Cost: O(m) for m circles, plus the stroked points.
 
-use crate::geometry::Pt;
+use crate::geom::Pt;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 /// A piece of a rebuilt ring.
@@ -535,11 +535,11 @@ mod tests {
         let pts = stroke_ring(&[[0.0, 0.0, 5.0]], 0.01);
         assert_eq!(pts.len(), 50);
         assert!(pts.iter().all(|p| (p[0].hypot(p[1]) - 5.0).abs() < 1e-9));
-        let area = crate::geometry::signed_area(&pts);
+        let area = crate::geom::signed_area(&pts);
         assert!((area - 25.0 * PI).abs() < 0.5, "{area}");
         // Two internal circles: a stadium, area = pi r^2 + 2r * d
         let st = stroke_ring(&[[0.0, 0.0, 1.0], [10.0, 0.0, 1.0]], 1e-4);
-        let a = crate::geometry::signed_area(&st);
+        let a = crate::geom::signed_area(&st);
         assert!((a - (PI + 20.0)).abs() < 1e-3, "{a}");
     }
 
@@ -556,7 +556,7 @@ mod tests {
         let spans = ring_spans(&c);
         assert!(spans[3].iter().all(|s| matches!(s, Seg::Line(..))));
         let pts = stroke_ring(&c, 0.01);
-        assert!(crate::geometry::signed_area(&pts) > 0.0);
+        assert!(crate::geom::signed_area(&pts) > 0.0);
     }
 
     #[test]

@@ -5,10 +5,10 @@
 //! isolated points, but only at the points the caller allows (the encoder allows exactly the touch
 //! points of the input, kept as shared vertices, so the interior stays connected as it was), only
 //! vertex to vertex, and without crossing there. Segment pairs are found with a uniform grid
-//! ([`crate::box_grid`]; an R-tree when the segments are spread too unevenly for one). [`crate::arcs`] checks the true arcs between the stroked points.
+//! ([`crate::geom::box_grid`]; an R-tree when the segments are spread too unevenly for one). [`crate::check::arcs`] checks the true arcs between the stroked points.
 
-use crate::box_grid::{union, Bbox, BoxIndex, EMPTY};
-use crate::geometry::{signed_area, Pt};
+use crate::geom::box_grid::{union, Bbox, BoxIndex, EMPTY};
+use crate::geom::{signed_area, Pt};
 use robust::{orient2d, Coord};
 
 /// Points where two different rings may touch, by the bits of their coordinates.

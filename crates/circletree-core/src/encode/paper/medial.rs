@@ -9,7 +9,7 @@
 //! edges. Coordinates are moved to a local origin first (circumcentres of UTM-sized coordinates
 //! lose digits). Cost: O(n log n).
 
-use crate::geometry::Pt;
+use crate::geom::Pt;
 use spade::handles::FixedVertexHandle;
 use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
 
@@ -47,7 +47,7 @@ pub fn candidates(ring: &[Pt], interrupt: &mut dyn FnMut()) -> Vec<Candidate> {
 
 /// [`candidates`] as two lists, one after the other: on a large ring each thread's, as it made
 /// them (putting them together was a copy of some 60 MB into fresh pages at a million vertices,
-/// 31 ms on one thread, for nothing: [`crate::filter::map_runs`] reads both where they are).
+/// 31 ms on one thread, for nothing: [`crate::encode::paper::filter::map_runs`] reads both where they are).
 pub fn candidate_lists(ring: &[Pt], interrupt: &mut dyn FnMut()) -> [Vec<Candidate>; 2] {
     let n = ring.len();
     if n < 3 {
