@@ -76,7 +76,7 @@ SELECT ct_encode_within(geom, 10) IS NULL FROM coast WHERE name = 'newfoundland'
 SELECT ct_encode(geom, 5, 0.4, 10) IS NULL FROM coast WHERE name = 'newfoundland';
 RESET statement_timeout;
 SELECT 1 AS usable;
--- 5. The core's own proof of validity (session 17) spares PostGIS's check only where it proves the
+-- 5. The core's own proof of validity spares PostGIS's check only where it proves the
 --    input valid beyond doubt. Random rings of 4 to 9 points on a 6 x 6 grid (so crossings, touches,
 --    spikes, repeated points and collinear runs are common), alone, with a random hole, or beside a
 --    random second part: every input PostGIS calls invalid is refused with PostGIS's reason, every

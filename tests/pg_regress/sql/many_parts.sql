@@ -1,7 +1,6 @@
 -- A MultiPolygon of many small, alike parts (a grid of 10,000 parcels, 1 m squares 2 m apart):
--- version 2 codes a part in under the 5 bytes version 1 needs, and releases up to 0.5.0 wrote such
--- values and then refused to read them back ("claims N parts but only M bytes remain"). Stored,
--- read, decoded and compared: nothing is lost.
+-- version 2 codes a part in under the 5 bytes version 1 needs, so its reader bounds the part count
+-- by version 2's own stream budget. Stored, read, decoded and compared: nothing is lost.
 CREATE TEMP TABLE parcels AS
 SELECT ST_SetSRID(ST_Collect(ST_MakeEnvelope(x * 2, y * 2, x * 2 + 1, y * 2 + 1) ORDER BY x, y), 2193) AS geom
   FROM generate_series(0, 99) x, generate_series(0, 99) y;

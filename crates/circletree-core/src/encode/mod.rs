@@ -435,8 +435,8 @@ fn within_verdict(
 
 /// Inputs of at least this many vertices have their plans priced on two threads. Lower than
 /// [`parallel::MIN_VERTICES`]: pricing a plan is a millisecond at this size against tens of
-/// microseconds to start a thread (the public set's `ct_encode_within(geom, 10)` in the core,
-/// best of five: 112 ms with 5,000, 101 ms with 2,000, 95 ms with 1,000 or 500).
+/// microseconds to start a thread, so from this size up a second thread pays for itself (below
+/// it, the public set's `ct_encode_within(geom, 10)` gains nothing more).
 const PLANS_APART_VERTICES: u64 = 1_000;
 
 /// What a plan's start would store: its bytes, or bounds on their number
