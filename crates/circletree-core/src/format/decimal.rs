@@ -35,7 +35,7 @@ impl Decimal {
     /// The shortest decimal that reads back as `v` (Rust's float formatting is shortest-round-trip).
     ///
     /// ```
-    /// use circletree_core::decimal::Decimal;
+    /// use circletree_core::format::Decimal;
     /// assert_eq!(Decimal::from_f64(0.4).unwrap(), Decimal { mantissa: 4, exp: -1 });
     /// assert_eq!(Decimal::from_f64(0.4).unwrap().to_f64(), 0.4);
     /// ```

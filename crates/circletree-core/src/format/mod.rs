@@ -198,8 +198,8 @@ impl CircleTree {
     ///
     /// ```
     /// use circletree_core::format::*;
-    /// use circletree_core::decimal::Decimal;
-    /// use circletree_core::geometry::Kind;
+    /// use circletree_core::format::Decimal;
+    /// use circletree_core::geom::Kind;
     /// let d = |s| Decimal::parse(s).unwrap();
     /// let ct = CircleTree { version: FORMAT_VERSION, srid: 32760, kind: Kind::Polygon, grid: d("0.5"),
     ///   params: Params { min_radius: d("5"), overlap: d("0.4"), dp_tolerance: None, max_error: d("5") },

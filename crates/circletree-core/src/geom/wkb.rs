@@ -78,7 +78,7 @@ pub fn is_polygonal(buf: &[u8]) -> bool {
 /// let wkb = [1u8, 3, 0, 0, 0, 1, 0, 0, 0, 4, 0, 0, 0,
 ///   0,0,0,0,0,0,0,0, 0,0,0,0,0,0,0,0,  0,0,0,0,0,0,240,63, 0,0,0,0,0,0,0,0,
 ///   0,0,0,0,0,0,0,0, 0,0,0,0,0,0,240,63, 0,0,0,0,0,0,0,0, 0,0,0,0,0,0,0,0];
-/// let input = circletree_core::wkb::read(&wkb).unwrap();
+/// let input = circletree_core::geom::wkb::read(&wkb).unwrap();
 /// assert_eq!(input.shape.parts[0][0].len(), 3);
 /// ```
 pub fn read(buf: &[u8]) -> Result<Input> {
