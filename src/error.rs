@@ -36,9 +36,13 @@ fn classify(e: &Error) -> (PgSqlErrorCode, &'static str) {
             ERRCODE_PROGRAM_LIMIT_EXCEEDED,
             "Decode at a coarser arc tolerance, ct_decode(ct, arc_tolerance), or keep the true arcs with ct_decode_curved(ct).",
         ),
+        Error::BeyondPrecision { .. } => (
+            ERRCODE_INVALID_PARAMETER_VALUE,
+            "Move the rings apart first, e.g. ST_MakeValid(ST_SnapToGrid(geom, g)) with g a few times that finest grid, or translate the geometry nearer the origin (a double holds about 16 significant digits of each coordinate).",
+        ),
         Error::Unencodable(_) => (
             ERRCODE_INVALID_PARAMETER_VALUE,
-            "Use a larger max_error, or snap the geometry first with ST_SnapToGrid.",
+            "Snap the geometry first, e.g. ST_MakeValid(ST_SnapToGrid(geom, g)) with g a few times the grid named; a valid polygon should encode, so please report it with ST_AsEWKT(geom) if it persists.",
         ),
     }
 }

@@ -55,6 +55,19 @@ pub enum Error {
     /// The result would exceed what PostgreSQL can hold in one value (SQLSTATE 54000).
     #[error("{0}")]
     TooLarge(String),
+    /// Two rings come closer to each other than the finest grid coordinates of this magnitude
+    /// allow can hold apart (SQLSTATE 22023).
+    #[error(
+        "could not encode the polygon: its rings come within {clearance} of each other (its minimum clearance), and coordinates as large as {magnitude} allow no grid finer than {finest}, which cannot hold rings so close apart"
+    )]
+    BeyondPrecision {
+        /// The input's minimum clearance.
+        clearance: String,
+        /// Its largest absolute coordinate.
+        magnitude: String,
+        /// The finest grid they allow.
+        finest: String,
+    },
     /// The encoder could not produce a valid reconstruction within the error bound (SQLSTATE 22023).
     #[error("could not encode the polygon within max_error {0}")]
     Unencodable(String),

@@ -66,6 +66,24 @@ fn square(x: f64, y: f64, s: f64) -> Vec<Pt> {
 }
 
 #[test]
+fn rings_far_closer_than_the_bound() {
+    // 1e-6 and 1e-9 apart: closer than six tenfold refinements of the bound's grid reach, so the
+    // grid goes on to half the clearance
+    let triangle = vec![vec![vec![[0.0, 0.0], [1000.0, 0.0], [1000.0, 1e-6]]]];
+    let sliver = vec![vec![vec![
+        [0.0, 0.0],
+        [1000.0, 0.0],
+        [1000.0, 1e-9],
+        [0.0, 1e-9],
+    ]]];
+    for parts in [triangle, sliver] {
+        for t in [100.0, 10.0, 1.0, 0.01] {
+            promise(Kind::Polygon, &parts, &opts(t, t, Some(t))).expect("encodes");
+        }
+    }
+}
+
+#[test]
 fn parts_touching_at_a_corner() {
     // the first statement
     let parts = vec![
@@ -117,14 +135,15 @@ fn made_valid_bow_tie() {
 #[test]
 fn tiny_values_are_readable_or_refused() {
     let tiny = vec![vec![square(0.0, 0.0, 1e-9)]];
+    // every length by one rule: 1e-11 ..= 1e13
     match promise(Kind::Polygon, &tiny, &opts(1e-12, 1e-12, None)) {
         Err(Error::InvalidParameter { name, range, .. }) => {
-            assert_eq!(name, "max_error");
-            assert!(range.contains("1e-9"), "{range}");
+            assert_eq!(name, "min_radius");
+            assert!(range.contains("between 1e-11 and 1e13"), "{range}");
         }
         other => panic!("1e-12 must be refused as a parameter, got {other:?}"),
     }
-    promise(Kind::Polygon, &tiny, &opts(1e-9, 1e-9, None)).expect("1e-9 encodes");
+    promise(Kind::Polygon, &tiny, &opts(1e-11, 1e-11, None)).expect("1e-11 encodes");
     // huge coordinates with a small error: refused up front, naming max_error
     let far = vec![vec![square(1e12, 1e12, 1e6)]];
     match promise(Kind::Polygon, &far, &opts(1e-3, 1e-3, None)) {

@@ -19,11 +19,15 @@
 //!    zero-radius circle (counted as *repaired*); a span with no vertex left loses its circle.
 //!
 //! The loop ends because each round adds a vertex or removes a circle; its end point, every vertex
-//! kept, is the quantized original. If even that fails (two rings closer than the grid step), the
-//! grid is refined tenfold, up to [`REFINEMENTS`] times (parts smaller than the grid need it). The result is valid and within `max_error`.
+//! kept, is the quantized original. If even that fails (rings closer to each other than the grid
+//! can hold), the grid is refined: tenfold at first ([`TENFOLD`] times), then at once to half the
+//! input's minimum clearance ([`crate::geom::clearance`]) when that is what is close, as far as the
+//! coordinates allow ([`finest_grid`]). The result is valid and within `max_error`; a shape that
+//! even the finest grid cannot hold is refused with its clearance, its magnitude and that grid
+//! ([`Error::BeyondPrecision`]).
 //!
-//! Parameters the stored format cannot hold are refused before any work (a grid outside
-//! 1e-12 ..= 9e12, coordinates beyond 2^50 grid steps), so every value returned reads back.
+//! Parameters are checked by one rule before any work ([`LENGTHS`], [`check_magnitude`]), so
+//! every value returned reads back.
 //!
 //! The work is split by job: [`initial`] (what a plan starts from: the paper's circles and
 //! Douglas-Peucker points, or the fewest points alone) and [`repair`] (the closed loop every
@@ -42,7 +46,7 @@ use crate::error::{Error, Result};
 use crate::format::decimal::Decimal;
 use crate::format::grid::Grid;
 use crate::format::{Circle, CircleTree, Params, MAX_STEPS};
-use crate::geom::{orient, Pt, Shape};
+use crate::geom::{clearance, orient, Pt, Shape};
 use crate::parallel;
 pub use host_check::HostCheck;
 use host_check::{beside, Verdict};
@@ -75,61 +79,56 @@ pub struct Report {
     pub rounds: usize,
 }
 
-/// Smallest and largest length parameter (the stored decimals hold any length in this range).
-const LENGTH_RANGE: (f64, f64) = (1e-100, 1e100);
-/// Smallest and largest `max_error`: its grid (about half of it, refined up to a hundredfold more
-/// when rings are very close) must stay within the format's 1e-12 ..= 9e12.
-pub const MAX_ERROR_RANGE: (f64, f64) = (1e-9, 1e13);
+/// Every length parameter (`min_radius`, `dp_tolerance`, `max_error`) is finite and within this
+/// range, in the units of the geometry's SRID: the grid, about half of `max_error` and refined as
+/// far as a polygon needs, must stay within the format's steps of 1e-12 ..= 9e12.
+pub const LENGTHS: (f64, f64) = (1e-11, 1e13);
 
-fn positive(name: &'static str, v: f64) -> Result<f64> {
-    if v.is_finite() && v >= LENGTH_RANGE.0 && v <= LENGTH_RANGE.1 {
+/// The one rule for a length parameter ([`LENGTHS`]).
+fn length(name: &'static str, v: f64) -> Result<f64> {
+    if v.is_finite() && (LENGTHS.0..=LENGTHS.1).contains(&v) {
         Ok(v)
     } else {
-        Err(Error::InvalidParameter {
-            name,
-            value: crate::error::number(v),
-            range: "a positive, finite length between 1e-100 and 1e100".into(),
-        })
+        Err(length_error(name, v))
     }
 }
 
-fn decimal(name: &'static str, v: f64) -> Result<Decimal> {
-    Decimal::from_f64(v).ok_or(Error::InvalidParameter {
+fn length_error(name: &'static str, v: f64) -> Error {
+    Error::InvalidParameter {
         name,
         value: crate::error::number(v),
-        range: "a positive, finite length between 1e-100 and 1e100".into(),
-    })
+        range: format!(
+            "a length between {:e} and {:e}, in the units of the geometry's SRID",
+            LENGTHS.0, LENGTHS.1
+        ),
+    }
+}
+
+/// A checked parameter as the value stores it.
+fn decimal(name: &'static str, v: f64) -> Result<Decimal> {
+    Decimal::from_f64(v).ok_or_else(|| length_error(name, v))
 }
 
 impl Options {
     /// Check the ranges; returns `max_error` resolved.
     pub fn check(&self) -> Result<f64> {
-        positive("min_radius", self.min_radius)?;
-        if !(self.overlap.is_finite() && (0.0..=1.0).contains(&self.overlap)) {
+        length("min_radius", self.min_radius)?;
+        // a fraction: 0, or as fine as a length may be
+        if !(self.overlap == 0.0 || (LENGTHS.0..=1.0).contains(&self.overlap)) {
             return Err(Error::InvalidParameter {
                 name: "overlap",
                 value: crate::error::number(self.overlap),
-                range: "between 0 and 1".into(),
+                range: format!("0, or a fraction between {:e} and 1", LENGTHS.0),
             });
         }
         if let Some(d) = self.dp_tolerance {
-            positive("dp_tolerance", d)?;
+            length("dp_tolerance", d)?;
         }
-        let m = match self.max_error {
-            Some(m) => positive("max_error", m)?,
-            None => self.min_radius.max(self.dp_tolerance.unwrap_or(0.0)),
-        };
-        if !(MAX_ERROR_RANGE.0..=MAX_ERROR_RANGE.1).contains(&m) {
-            return Err(Error::InvalidParameter {
-                name: "max_error",
-                value: crate::error::number(m),
-                range: format!(
-                    "between {:e} and {:e} (when NULL it is greatest(min_radius, dp_tolerance))",
-                    MAX_ERROR_RANGE.0, MAX_ERROR_RANGE.1
-                ),
-            });
+        match self.max_error {
+            Some(m) => length("max_error", m),
+            // both checked: their larger is within the range too
+            None => Ok(self.min_radius.max(self.dp_tolerance.unwrap_or(0.0))),
         }
-        Ok(m)
     }
 }
 
@@ -291,10 +290,7 @@ fn within_verdict(
     read: Option<crate::geom::wkb::Input>,
     interrupt: &mut dyn FnMut(),
 ) -> Result<(CircleTree, Vec<u8>, Report)> {
-    positive("max_error", max_error)?;
-    if !(MAX_ERROR_RANGE.0..=MAX_ERROR_RANGE.1).contains(&max_error) {
-        return Err(range_error(max_error));
-    }
+    length("max_error", max_error)?;
     let checked = Options {
         min_radius: max_error,
         overlap: 0.0,
@@ -314,8 +310,8 @@ fn within_verdict(
     for fraction in WITHIN_GRIDS {
         // a plan whose grid cannot hold the coordinates is skipped (a coarser one may)
         let grid = match grid_near(max_error * fraction)
-            .ok_or_else(|| range_error(max_error))
-            .and_then(|g| check_steps(&prep, max_error, g).map(|()| g))
+            .filter(|g| prep.magnitude / g.to_f64() <= STEP_LIMIT)
+            .ok_or_else(|| length_error("max_error", max_error))
         {
             Ok(g) => g,
             Err(e) => {
@@ -429,7 +425,7 @@ fn within_verdict(
     match (best, first_error) {
         (Some((ct, bytes, report)), _) => Ok((ct, bytes, report)),
         (None, Some(e)) => Err(e),
-        (None, None) => Err(range_error(max_error)),
+        (None, None) => Err(length_error("max_error", max_error)),
     }
 }
 
@@ -507,17 +503,6 @@ fn grid_near(x: f64) -> Option<Decimal> {
     Decimal::new(m.clamp(10, 99), k).filter(|g| Grid::storable(*g))
 }
 
-fn range_error(max_error: f64) -> Error {
-    Error::InvalidParameter {
-        name: "max_error",
-        value: crate::error::number(max_error),
-        range: format!(
-            "between {:e} and {:e}",
-            MAX_ERROR_RANGE.0, MAX_ERROR_RANGE.1
-        ),
-    }
-}
-
 /// The input, read once for any number of plans.
 struct Prepared {
     shape: Shape,
@@ -565,29 +550,50 @@ fn prepare(
 /// Coordinates must stay within 2^50 grid steps (the format's range, with room for circles).
 const STEP_LIMIT: f64 = MAX_STEPS as f64 / 4.0;
 
-/// The grid a plan starts on: the coarsest "nice" step not above `max_error / fraction`.
-fn first_grid(prep: &Prepared, max_error: f64, fraction: f64) -> Result<Decimal> {
-    let grid = nice_grid(max_error / fraction)
-        .filter(|g| Grid::storable(*g))
-        .ok_or_else(|| range_error(max_error))?;
-    check_steps(prep, max_error, grid)?;
-    Ok(grid)
+/// The least `max_error` for coordinates as large as `magnitude`: 2^-47 of it (about 7.1e-15 of
+/// it, a few units in the last place of a double), so that the coarsest grid of every plan holds
+/// the coordinates in [`STEP_LIMIT`] steps.
+pub fn least_max_error(magnitude: f64) -> f64 {
+    magnitude * STEP_LIMIT.recip() * 8.0
 }
 
-/// The input's coordinates must fit in [`STEP_LIMIT`] steps of `grid`.
-fn check_steps(prep: &Prepared, max_error: f64, grid: Decimal) -> Result<()> {
-    let magnitude = prep.magnitude;
-    if magnitude / grid.to_f64() > STEP_LIMIT {
+/// The second rule for `max_error`, beside [`LENGTHS`]: at least [`least_max_error`] of the
+/// input's largest absolute coordinate.
+fn check_magnitude(prep: &Prepared, max_error: f64) -> Result<()> {
+    let least = least_max_error(prep.magnitude);
+    if max_error < least {
         return Err(Error::InvalidParameter {
             name: "max_error",
             value: crate::error::number(max_error),
             range: format!(
-                "at least {:e} for coordinates as large as {magnitude:e} (the grid, about half of max_error, must hold them in 2^50 steps)",
-                magnitude / STEP_LIMIT * 10.0
+                "at least {} for coordinates as large as {} (2^-47 of them: a double holds about 16 significant digits)",
+                crate::error::number(least),
+                crate::error::number(prep.magnitude)
             ),
         });
     }
     Ok(())
+}
+
+/// The finest grid a value of coordinates as large as `magnitude` may have: the finest 1, 2 or
+/// 5 × 10^k that holds them in [`STEP_LIMIT`] steps, and no finer than the format's 1e-12
+/// (`None` for coordinates [`check_magnitude`] refuses).
+pub fn finest_grid(magnitude: f64) -> Option<Decimal> {
+    let least = (magnitude / STEP_LIMIT).max(10f64.powi(crate::format::grid::MIN_EXP as i32));
+    let k = least.log10().floor() as i32;
+    [k, k + 1]
+        .into_iter()
+        .flat_map(|e| [1i64, 2, 5].map(|m| Decimal::new(m, e)))
+        .flatten()
+        .find(|d| d.to_f64() >= least && Grid::storable(*d))
+}
+
+/// The grid a plan starts on: the coarsest "nice" step not above `max_error / fraction`.
+fn first_grid(prep: &Prepared, max_error: f64, fraction: f64) -> Result<Decimal> {
+    check_magnitude(prep, max_error)?;
+    nice_grid(max_error / fraction)
+        .filter(|g| Grid::storable(*g))
+        .ok_or_else(|| length_error("max_error", max_error))
 }
 
 /// What one run of the closed loop starts from.
@@ -704,33 +710,40 @@ fn run(
     mut first: Option<(Vec<RingState>, Report)>,
     interrupt: &mut dyn FnMut(),
 ) -> Result<(CircleTree, Report)> {
-    let opts = &plan.opts;
+    let mut opts = plan.opts;
+    let mut circles = plan.circles;
     let shape = &prep.shape;
     let mut report = Report {
         dropped_zm: prep.dropped_zm,
         ..Report::default()
     };
-    let params = params(opts, max_error)?;
+    let params = params(&opts, max_error)?;
     let mut grid = plan.grid;
-    let mut last_problem: Option<Pt> = None;
-    for attempt in 0..=REFINEMENTS {
+    let finest = finest_grid(prep.magnitude).ok_or_else(|| length_error("max_error", max_error))?;
+    // the input's minimum clearance, once a grid has proved too coarse (see below)
+    let mut clearance: Option<f64> = None;
+    let mut first_attempt = true;
+    let mut refinements = 0;
+    loop {
         let g = Grid::new(grid);
         let allowed = allowed_touches(prep, g);
         let ctx = Context {
             shape,
             pinned: &prep.pinned,
             allowed: &allowed,
-            circles: plan.circles,
+            circles,
         };
         let rings = match first.take() {
-            Some((rings, start)) if attempt == 0 => {
+            Some((rings, start)) if first_attempt => {
                 report.filtered_circles = start.filtered_circles;
                 report.dp_points = start.dp_points;
                 rings
             }
-            _ => initial_rings(&ctx, opts, max_error, g, interrupt, &mut report),
+            _ => initial_rings(&ctx, &opts, max_error, g, interrupt, &mut report),
         };
-        match verify_and_repair(&ctx, rings, max_error, g, interrupt, &mut report)? {
+        first_attempt = false;
+        let outcome = verify_and_repair(&ctx, rings, max_error, g, interrupt, &mut report)?;
+        match outcome {
             Outcome::Done(rings, repaired) => {
                 let mut parts: Vec<Vec<Vec<Circle>>> = vec![Vec::new(); shape.parts.len()];
                 for r in rings {
@@ -743,26 +756,73 @@ fn run(
                 return Ok((ct, report));
             }
             Outcome::FinerGrid(at) => {
-                last_problem = at;
-                let finer = Decimal::new(grid.mantissa, grid.exp as i32 - 1)
-                    .filter(|g| Grid::storable(*g) && prep.magnitude / g.to_f64() <= STEP_LIMIT);
-                match finer {
-                    Some(f) if attempt < REFINEMENTS => grid = f,
-                    _ => break,
+                // Even every vertex kept, the rings touch or cross on this grid. Moving each
+                // vertex by less than half the minimum clearance cannot make them cross, so a
+                // grid of half of it holds them. The first [`TENFOLD`] refinements are tenfold
+                // (rings a little closer than the grid most often need no more); after that the
+                // grid goes at once to half the clearance when that is what is close (looked for
+                // within a few steps of the grid that failed first), else tenfold again.
+                let c =
+                    *clearance.get_or_insert_with(|| clearance::below(shape, 4.0 * g.step_f64()));
+                let tenth = Decimal::new(grid.mantissa, grid.exp as i32 - 1);
+                let by_clearance =
+                    nice_grid(c / 2.0).filter(|_| refinements >= TENFOLD && c < 4.0 * g.step_f64());
+                let next = [tenth, by_clearance]
+                    .into_iter()
+                    .flatten()
+                    .min_by(|a, b| a.to_f64().total_cmp(&b.to_f64()));
+                refinements += 1;
+                match next {
+                    _ if grid.to_f64() <= finest.to_f64() => {
+                        return Err(refusal(prep, max_error, c, finest, at));
+                    }
+                    Some(n) if n.to_f64() > finest.to_f64() => grid = n,
+                    _ => grid = finest,
+                }
+                // On a grid far finer than the bound, arcs stroked to the grid step take many
+                // thousands of chords each: the paper's circles give way to the fewest points
+                // within the bound, as `encode_within` keeps (the value stays valid and within
+                // max_error; its stored parameters are the caller's).
+                if circles && grid.to_f64() < max_error * POINTS_BELOW {
+                    circles = false;
+                    opts.dp_tolerance = Some(max_error - 4e-3 * grid.to_f64());
                 }
             }
         }
     }
-    let at = last_problem.map_or(String::new(), |p| format!(" near ({} {})", p[0], p[1]));
-    Err(Error::Unencodable(format!(
-        "{max_error}: even keeping every vertex, the rebuilt rings touch or cross{at} on a grid of {grid} (parts or holes closer to each other than the grid step, or touching at a point that is not a vertex of either)"
-    )))
 }
 
-/// How many times the grid may be refined tenfold. Islands much smaller than max_error (Scilly's
-/// rocks at 50 km) need a grid far finer than max_error/2; a refinement only costs the bytes of the
-/// finer coordinates, and a polygon that needs none never pays for it.
-const REFINEMENTS: usize = 6;
+/// A grid finer than this fraction of max_error holds points only (see [`run`]).
+const POINTS_BELOW: f64 = 1e-7;
+
+/// Refinements that are tenfold whatever the clearance. Islands much smaller than max_error
+/// (Scilly's rocks at 50 km) need a grid far finer than max_error/2, yet most often coarser than
+/// half their clearance: a refinement costs the bytes of the finer coordinates, and a polygon that
+/// needs none never pays for it.
+const TENFOLD: usize = 6;
+
+/// Why a shape cannot be encoded on the finest grid its coordinates allow.
+fn refusal(
+    prep: &Prepared,
+    max_error: f64,
+    clearance: f64,
+    finest: Decimal,
+    at: Option<Pt>,
+) -> Error {
+    if clearance < 2.0 * finest.to_f64() {
+        return Error::BeyondPrecision {
+            clearance: crate::error::number(clearance),
+            magnitude: crate::error::number(prep.magnitude),
+            finest: finest.to_string(),
+        };
+    }
+    let at = at.map_or(String::new(), |p| format!(" near ({} {})", p[0], p[1]));
+    Error::Unencodable(format!(
+        "{max_error}: even keeping every vertex, the rebuilt rings touch or cross{at} on a grid of {finest}, the finest coordinates as large as {} allow",
+        crate::error::number(prep.magnitude)
+    ))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -878,5 +938,62 @@ mod tests {
                 ..
             }
         ));
+    }
+    /// Both encoders, with every bound given.
+    fn both(wkb: &[u8], bounds: &[f64]) -> Vec<Result<CircleTree>> {
+        bounds
+            .iter()
+            .flat_map(|&t| {
+                let o = Options {
+                    max_error: Some(t),
+                    ..opts(t, Some(t))
+                };
+                [
+                    encode(wkb, &o, Call::new(0)).map(|e| e.value),
+                    encode_within(wkb, t, Call::new(0)).map(|e| e.value),
+                ]
+            })
+            .collect()
+    }
+
+    #[test]
+    fn rings_closer_than_a_double_holds_are_refused_with_the_numbers() {
+        // two squares near x = 1e6, 5e-10 apart (four units in the last place there): the finest
+        // grid at that magnitude is 1e-9
+        let sq = |x0: f64| {
+            vec![vec![
+                [x0, 0.0],
+                [x0 + 10.0, 0.0],
+                [x0 + 10.0, 10.0],
+                [x0, 10.0],
+            ]]
+        };
+        let a = 1e6;
+        let wkb = crate::geom::wkb::write(Kind::MultiPolygon, &[sq(a), sq(a + 10.0 + 5e-10)]);
+        for e in both(&wkb, &[1.0, 0.01]) {
+            match e.unwrap_err() {
+                Error::BeyondPrecision {
+                    clearance,
+                    magnitude,
+                    finest,
+                } => {
+                    let c: f64 = clearance.parse().unwrap();
+                    assert!(c > 4e-10 && c < 6e-10, "{clearance}");
+                    assert_eq!(magnitude, (a + 10.0 + 5e-10 + 10.0).to_string());
+                    assert_eq!(finest, "0.000000001");
+                }
+                e => panic!("{e}"),
+            }
+        }
+    }
+
+    #[test]
+    fn the_finest_grid_follows_the_magnitude() {
+        assert_eq!(finest_grid(1.0).unwrap().to_string(), "0.000000000001");
+        assert_eq!(finest_grid(1e6).unwrap().to_string(), "0.000000001");
+        // 2^-50 of 5e6 is 4.4e-9
+        assert_eq!(finest_grid(5e6).unwrap().to_string(), "0.000000005");
+        assert!(finest_grid(1e30).is_none());
+        assert_eq!(least_max_error(2f64.powi(47)), 1.0);
     }
 }

@@ -5,6 +5,7 @@
 //! on that: a circle with positive radius lies on the left of the ring (inside the polygon).
 
 pub(crate) mod box_grid;
+pub(crate) mod clearance;
 pub mod wkb;
 
 /// A point `[x, y]`.
