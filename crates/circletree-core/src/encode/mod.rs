@@ -308,9 +308,9 @@ fn within_verdict(
     let mut specs = Vec::new();
     let mut first_error = None;
     for fraction in WITHIN_GRIDS {
-        // a plan whose grid cannot hold the coordinates is skipped (a coarser one may)
+        // every plan's grid holds the coordinates: it is at least 0.45 max_error, and
+        // `check_magnitude` (in `first_grid` above) asked for 2^-47 of them
         let grid = match grid_near(max_error * fraction)
-            .filter(|g| prep.magnitude / g.to_f64() <= STEP_LIMIT)
             .ok_or_else(|| length_error("max_error", max_error))
         {
             Ok(g) => g,
@@ -722,7 +722,6 @@ fn run(
     let finest = finest_grid(prep.magnitude).ok_or_else(|| length_error("max_error", max_error))?;
     // the input's minimum clearance, once a grid has proved too coarse (see below)
     let mut clearance: Option<f64> = None;
-    let mut first_attempt = true;
     let mut refinements = 0;
     loop {
         let g = Grid::new(grid);
@@ -733,17 +732,16 @@ fn run(
             allowed: &allowed,
             circles,
         };
+        // the plan's starting rings are those of its first grid only
         let rings = match first.take() {
-            Some((rings, start)) if first_attempt => {
+            Some((rings, start)) => {
                 report.filtered_circles = start.filtered_circles;
                 report.dp_points = start.dp_points;
                 rings
             }
             _ => initial_rings(&ctx, &opts, max_error, g, interrupt, &mut report),
         };
-        first_attempt = false;
-        let outcome = verify_and_repair(&ctx, rings, max_error, g, interrupt, &mut report)?;
-        match outcome {
+        match verify_and_repair(&ctx, rings, max_error, g, interrupt, &mut report)? {
             Outcome::Done(rings, repaired) => {
                 let mut parts: Vec<Vec<Vec<Circle>>> = vec![Vec::new(); shape.parts.len()];
                 for r in rings {
@@ -764,6 +762,9 @@ fn run(
                 // within a few steps of the grid that failed first), else tenfold again.
                 let c =
                     *clearance.get_or_insert_with(|| clearance::below(shape, 4.0 * g.step_f64()));
+                if grid.to_f64() <= finest.to_f64() {
+                    return Err(refusal(prep, max_error, c, finest, at));
+                }
                 let tenth = Decimal::new(grid.mantissa, grid.exp as i32 - 1);
                 let by_clearance =
                     nice_grid(c / 2.0).filter(|_| refinements >= TENFOLD && c < 4.0 * g.step_f64());
@@ -772,13 +773,9 @@ fn run(
                     .flatten()
                     .min_by(|a, b| a.to_f64().total_cmp(&b.to_f64()));
                 refinements += 1;
-                match next {
-                    _ if grid.to_f64() <= finest.to_f64() => {
-                        return Err(refusal(prep, max_error, c, finest, at));
-                    }
-                    Some(n) if n.to_f64() > finest.to_f64() => grid = n,
-                    _ => grid = finest,
-                }
+                grid = next
+                    .filter(|n| n.to_f64() > finest.to_f64())
+                    .unwrap_or(finest);
                 // On a grid far finer than the bound, arcs stroked to the grid step take many
                 // thousands of chords each: the paper's circles give way to the fewest points
                 // within the bound, as `encode_within` keeps (the value stays valid and within
