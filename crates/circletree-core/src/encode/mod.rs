@@ -804,19 +804,22 @@ fn run(
     }
 }
 
-/// The input with its rings that come within a grid step of each other made to touch, encoded on
+/// The input with its rings that come within two grid steps of each other pushed apart, encoded on
 /// the finest grid within `max_error` less the distance the nudge moved it ([`nudge`]); `None`
-/// when that does not make a valid shape or the encoding fails (the caller then refuses).
-fn nudged(
+/// when the pushes do not settle or the encoding fails (the caller then refuses).
+#[allow(clippy::too_many_arguments)]
+fn nudged_as(
     prep: &Prepared,
     srid: i32,
     opts: Options,
     circles: bool,
     finest: Decimal,
     max_error: f64,
+    scaled: bool,
     interrupt: &mut dyn FnMut(),
 ) -> Option<(CircleTree, Report)> {
-    let (shape, pinned, touches) = nudge::apart(&prep.shape, &prep.touches, Grid::new(finest))?;
+    let (shape, pinned, touches) =
+        nudge::apart(&prep.shape, &prep.touches, Grid::new(finest), scaled)?;
     // an upper bound of the distance moved: the measure is within eps of it
     let extent = prep.magnitude;
     let moved = crate::check::metrics::shape_hausdorff(&prep.shape.parts, &shape.parts, interrupt)
@@ -842,6 +845,23 @@ fn nudged(
         grid: finest,
     };
     run(&near, srid, &plan, inner, None, interrupt).ok()
+}
+
+/// [`nudged_as`] with rings too small for the grid scaled up, else made thin triangles.
+fn nudged(
+    prep: &Prepared,
+    srid: i32,
+    opts: Options,
+    circles: bool,
+    finest: Decimal,
+    max_error: f64,
+    interrupt: &mut dyn FnMut(),
+) -> Option<(CircleTree, Report)> {
+    [true, false].into_iter().find_map(|scaled| {
+        nudged_as(
+            prep, srid, opts, circles, finest, max_error, scaled, interrupt,
+        )
+    })
 }
 
 /// A grid finer than this fraction of max_error holds points only (see [`run`]).

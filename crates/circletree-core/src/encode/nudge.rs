@@ -27,8 +27,9 @@ const ROUNDS: usize = 16;
 pub(super) type Pinned = (Shape, Vec<Vec<Vec<usize>>>, Vec<Pt>);
 
 /// The shape nudged onto `grid`, with its touch points (`touch::pin`'s), or `None` when the pushes
-/// do not settle.
-pub(super) fn apart(shape: &Shape, touches: &[Pt], grid: Grid) -> Option<Pinned> {
+/// do not settle. A ring the grid leaves with under three points is `scaled` up ([`widen`]), or
+/// else made a thin triangle ([`widen_flat`]): each holds some shapes the other does not.
+pub(super) fn apart(shape: &Shape, touches: &[Pt], grid: Grid, scaled: bool) -> Option<Pinned> {
     let step = grid.step_f64();
     let snap = |p: Pt| [grid.snap(p[0]), grid.snap(p[1])];
     // per ring: the input's vertices and where they are now, consecutive repeats on the grid
@@ -57,7 +58,11 @@ pub(super) fn apart(shape: &Shape, touches: &[Pt], grid: Grid) -> Option<Pinned>
                     .iter()
                     .position(|p| touches.binary_search_by(|t| cmp(t, p)).is_ok())
                     .unwrap_or(0);
-                (was, now) = widen(ring, anchor, ri == 0, step, &snap)?;
+                (was, now) = if scaled {
+                    widen(ring, anchor, ri == 0, step, &snap)?
+                } else {
+                    widen_flat(&was, &now, ri == 0, step, &snap)
+                };
             }
             shells[pi] |= ri == 0;
             if shells[pi] {
@@ -136,6 +141,59 @@ fn widen(
         }
     }
     None
+}
+
+/// A ring that the grid leaves with one or two points: those and one a grid step beside their
+/// middle, on the interior's side (left of a shell, which runs counter-clockwise; right of a hole).
+fn widen_flat(
+    was: &[Pt],
+    now: &[Pt],
+    shell: bool,
+    step: f64,
+    snap: &impl Fn(Pt) -> Pt,
+) -> (Vec<Pt>, Vec<Pt>) {
+    let a = 0;
+    let b = (0..now.len())
+        .max_by(|&i, &j| dist(now[a], now[i]).total_cmp(&dist(now[a], now[j])))
+        .unwrap_or(0);
+    let (pa, pb) = (now[a], now[b]);
+    let len = dist(pa, pb);
+    let turn = if shell { 1.0 } else { -1.0 };
+    let (u, m) = if len == 0.0 {
+        ([0.0, turn], [pa[0] + step, pa[1]])
+    } else {
+        (
+            [-(pb[1] - pa[1]) / len * turn, (pb[0] - pa[0]) / len * turn],
+            [(pa[0] + pb[0]) / 2.0, (pa[1] + pb[1]) / 2.0],
+        )
+    };
+    let pb = if len == 0.0 { snap(m) } else { pb };
+    let wb = if len == 0.0 { pb } else { was[b] };
+    let mut c = snap([m[0] + u[0] * step, m[1] + u[1] * step]);
+    let mut k = 2.0;
+    while side(pa, pb, c) == 0.0 && k < 8.0 {
+        c = snap([m[0] + u[0] * step * k, m[1] + u[1] * step * k]);
+        k *= 2.0;
+    }
+    // the three counter-clockwise for a shell, clockwise for a hole
+    let ring = if (side(pa, pb, c) > 0.0) == shell {
+        vec![pa, pb, c]
+    } else {
+        vec![pa, c, pb]
+    };
+    let w = ring
+        .iter()
+        .map(|&p| {
+            if p == pa {
+                was[a]
+            } else if p == pb {
+                wb
+            } else {
+                c
+            }
+        })
+        .collect();
+    (w, ring)
 }
 
 fn cmp(a: &Pt, b: &Pt) -> std::cmp::Ordering {
@@ -256,7 +314,7 @@ mod tests {
         let mut shape = Shape { kind, parts };
         orient(&mut shape);
         let (_, touches) = touch::pin(&mut shape);
-        let (near, _, touches) = apart(&shape, &touches, grid()).expect("settled");
+        let (near, _, touches) = apart(&shape, &touches, grid(), true).expect("settled");
         let rings: Vec<RingRef> = near
             .parts
             .iter()
