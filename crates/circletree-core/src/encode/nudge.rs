@@ -40,18 +40,7 @@ pub(super) fn apart(shape: &Shape, touches: &[Pt], grid: Grid, scaled: bool) -> 
     let mut shells = vec![false; shape.parts.len()];
     for (pi, part) in shape.parts.iter().enumerate() {
         for (ri, ring) in part.iter().enumerate() {
-            let (mut was, mut now): (Vec<Pt>, Vec<Pt>) = (Vec::new(), Vec::new());
-            for &p in ring {
-                let q = snap(p);
-                if now.last() != Some(&q) {
-                    was.push(p);
-                    now.push(q);
-                }
-            }
-            while now.len() > 1 && now.first() == now.last() {
-                now.pop();
-                was.pop();
-            }
+            let (mut was, mut now) = placed(ring.iter().copied(), snap);
             if now.len() < 3 {
                 // about a point it shares with another ring, so that they still share it
                 let anchor = ring
@@ -123,18 +112,10 @@ fn widen(
     }
     for spans in [4.0, 8.0, 16.0, 32.0] {
         let k = spans * step / r;
-        let (mut was, mut now): (Vec<Pt>, Vec<Pt>) = (Vec::new(), Vec::new());
-        for &p in ring[anchor..].iter().chain(&ring[..anchor]) {
-            let q = snap([at[0] + (p[0] - o[0]) * k, at[1] + (p[1] - o[1]) * k]);
-            if now.last() != Some(&q) {
-                was.push(p);
-                now.push(q);
-            }
-        }
-        while now.len() > 1 && now.first() == now.last() {
-            now.pop();
-            was.pop();
-        }
+        let (was, now) = placed(
+            ring[anchor..].iter().chain(&ring[..anchor]).copied(),
+            |p: Pt| snap([at[0] + (p[0] - o[0]) * k, at[1] + (p[1] - o[1]) * k]),
+        );
         let area = signed_area(&now);
         if now.len() >= 3 && area != 0.0 && (area > 0.0) == shell {
             return Some((was, now));
@@ -194,6 +175,24 @@ fn widen_flat(
         })
         .collect();
     (w, ring)
+}
+
+/// A ring's points and where `place` puts them, consecutive repeats of a place (and the closing
+/// ones) dropped with their point.
+fn placed(ring: impl Iterator<Item = Pt>, place: impl Fn(Pt) -> Pt) -> (Vec<Pt>, Vec<Pt>) {
+    let (mut was, mut now): (Vec<Pt>, Vec<Pt>) = (Vec::new(), Vec::new());
+    for p in ring {
+        let q = place(p);
+        if now.last() != Some(&q) {
+            was.push(p);
+            now.push(q);
+        }
+    }
+    while now.len() > 1 && now.first() == now.last() {
+        now.pop();
+        was.pop();
+    }
+    (was, now)
 }
 
 fn cmp(a: &Pt, b: &Pt) -> std::cmp::Ordering {
