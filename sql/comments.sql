@@ -1,6 +1,6 @@
 -- Catalog documentation: what \dT+ circletree and \df+ ct_* show. Loaded last by src/lib.rs
 -- (extension_sql_file!), and repeated in the upgrade script of each release that changed it
--- (sql/circletree--0.3.0--0.4.0.sql introduced it; sql/circletree--0.5.0--0.6.0.sql holds this text).
+-- (sql/circletree--0.3.0--0.4.0.sql introduced it; sql/circletree--0.6.0--0.7.0.sql holds this text).
 COMMENT ON TYPE @extschema@.circletree IS
   'A polygon stored as ordered circles (x, y, ±r), rebuilt from tangents and arcs; valid and within its recorded max_error (Hausdorff) of the original. See docs/FORMAT.md.';
 COMMENT ON FUNCTION @extschema@.ct_encode(geometry, float8, float8, float8, float8) IS
@@ -36,7 +36,7 @@ COMMENT ON FUNCTION @extschema@.ct_decode(@extschema@.circletree, float8) IS
 COMMENT ON FUNCTION @extschema@.ct_decode_curved(@extschema@.circletree) IS
   'ct_decode_curved(ct): the rebuilt CURVEPOLYGON or MULTISURFACE with true circular arcs, SRID kept.';
 COMMENT ON FUNCTION @extschema@.ct_envelope(@extschema@.circletree) IS
-  'ct_envelope(ct): a box holding both the original and ct_decode(ct) (the stored bounding box widened by max_error), read from the header without decoding a circle: index it with CREATE INDEX ... USING gist (ct_envelope(ct)).';
+  'ct_envelope(ct): a box holding both the original and ct_decode(ct) (the stored bounding box widened by max_error), read from the header without decoding a circle (the key of the native index, CREATE INDEX ... USING gist (ct)).';
 COMMENT ON FUNCTION @extschema@._ct_envelope_ewkb(@extschema@.circletree) IS
   'Internal: ct_envelope as EWKB, from the header alone.';
 COMMENT ON FUNCTION @extschema@.ct_circles(@extschema@.circletree) IS
@@ -107,3 +107,55 @@ COMMENT ON OPERATOR @extschema@.= (@extschema@.circletree, @extschema@.circletre
   'Byte equality of two values.';
 COMMENT ON OPERATOR @extschema@.<> (@extschema@.circletree, @extschema@.circletree) IS
   'Byte inequality of two values.';
+COMMENT ON FUNCTION @extschema@.circletree_cmp(@extschema@.circletree, @extschema@.circletree) IS
+  'Byte order of two values (-1, 0, 1): the btree operator class, for ORDER BY, DISTINCT, GROUP BY and merge joins; no spatial meaning.';
+COMMENT ON FUNCTION @extschema@.circletree_lt(@extschema@.circletree, @extschema@.circletree) IS
+  'Byte order: a < b.';
+COMMENT ON FUNCTION @extschema@.circletree_le(@extschema@.circletree, @extschema@.circletree) IS
+  'Byte order: a <= b.';
+COMMENT ON FUNCTION @extschema@.circletree_gt(@extschema@.circletree, @extschema@.circletree) IS
+  'Byte order: a > b.';
+COMMENT ON FUNCTION @extschema@.circletree_ge(@extschema@.circletree, @extschema@.circletree) IS
+  'Byte order: a >= b.';
+COMMENT ON FUNCTION @extschema@.circletree_hash(@extschema@.circletree) IS
+  'Hash of the stored bytes (PostgreSQL''s hashvarlena, as bytea''s): the hash operator class, for hash joins and hashed GROUP BY.';
+COMMENT ON OPERATOR @extschema@.< (@extschema@.circletree, @extschema@.circletree) IS 'Byte order.';
+COMMENT ON OPERATOR @extschema@.<= (@extschema@.circletree, @extschema@.circletree) IS 'Byte order.';
+COMMENT ON OPERATOR @extschema@.> (@extschema@.circletree, @extschema@.circletree) IS 'Byte order.';
+COMMENT ON OPERATOR @extschema@.>= (@extschema@.circletree, @extschema@.circletree) IS 'Byte order.';
+COMMENT ON FUNCTION @extschema@._ct_to_geography(@extschema@.circletree) IS
+  'Internal: the circletree::geography cast (ct_decode_geography(ct), in EPSG:4326).';
+COMMENT ON FUNCTION @extschema@._ct_overlaps(@extschema@.circletree, geometry) IS
+  'Internal: ct && geom, the envelope meets the geometry''s box.';
+COMMENT ON FUNCTION @extschema@._ct_overlaps_g(geometry, @extschema@.circletree) IS
+  'Internal: geom && ct.';
+COMMENT ON FUNCTION @extschema@._ct_overlaps_ct(@extschema@.circletree, @extschema@.circletree) IS
+  'Internal: a && b, the two envelopes meet.';
+COMMENT ON OPERATOR @extschema@.&& (@extschema@.circletree, geometry) IS
+  'The envelope (ct_envelope) meets the geometry''s box; indexed by CREATE INDEX ... USING gist (ct).';
+COMMENT ON OPERATOR @extschema@.&& (geometry, @extschema@.circletree) IS
+  'The geometry''s box meets the envelope (ct_envelope).';
+COMMENT ON OPERATOR @extschema@.&& (@extschema@.circletree, @extschema@.circletree) IS
+  'The two envelopes (ct_envelope) meet.';
+COMMENT ON FUNCTION @extschema@._ct_gist_compress(internal) IS
+  'Internal: GiST compress, a circletree to its envelope as a box.';
+COMMENT ON FUNCTION @extschema@._ct_gist_consistent(internal, @extschema@.circletree, int2, oid, internal) IS
+  'Internal: GiST consistent for &&.';
+COMMENT ON FUNCTION @extschema@._ct_support(internal) IS
+  'Internal: planner support of ct_intersects, ct_contains and ct_dwithin (an index condition on a circletree GiST index).';
+COMMENT ON FUNCTION @extschema@.ct_intersects(@extschema@.circletree, geometry) IS
+  'ct_intersects(ct, geom): ST_Intersects(ct_decode(ct), geom), answered from a cached, edge-indexed rebuild; uses a GiST index on ct with no && written.';
+COMMENT ON FUNCTION @extschema@.ct_intersects(geometry, @extschema@.circletree) IS
+  'ct_intersects(geom, ct): ST_Intersects(geom, ct_decode(ct)).';
+COMMENT ON FUNCTION @extschema@.ct_contains(@extschema@.circletree, geometry) IS
+  'ct_contains(ct, geom): ST_Contains(ct_decode(ct), geom), from a cached, edge-indexed rebuild; uses a GiST index on ct.';
+COMMENT ON FUNCTION @extschema@.ct_contains(geometry, @extschema@.circletree) IS
+  'ct_contains(geom, ct): ST_Contains(geom, ct_decode(ct)).';
+COMMENT ON FUNCTION @extschema@.ct_dwithin(@extschema@.circletree, geometry, float8) IS
+  'ct_dwithin(ct, geom, distance): ST_DWithin(ct_decode(ct), geom, distance), from a cached, edge-indexed rebuild; uses a GiST index on ct.';
+COMMENT ON FUNCTION @extschema@.ct_dwithin(geometry, @extschema@.circletree, float8) IS
+  'ct_dwithin(geom, ct, distance): ST_DWithin(geom, ct_decode(ct), distance).';
+COMMENT ON FUNCTION @extschema@.ct_distance(@extschema@.circletree, geometry) IS
+  'ct_distance(ct, geom): ST_Distance(ct_decode(ct), geom), from a cached, edge-indexed rebuild.';
+COMMENT ON FUNCTION @extschema@.ct_distance(geometry, @extschema@.circletree) IS
+  'ct_distance(geom, ct): ST_Distance(geom, ct_decode(ct)).';

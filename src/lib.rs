@@ -6,9 +6,11 @@ use pgrx::prelude::*;
 
 ::pgrx::pg_module_magic!(name, version);
 
+pub mod access;
 pub mod datatype;
 pub mod error;
 pub mod functions;
+pub mod index;
 pub mod postgis;
 pub mod settings;
 
@@ -36,6 +38,12 @@ extension_sql_file!(
         functions::ct_summary,
         functions::ct_srid
     ]
+);
+
+extension_sql_file!(
+    "../sql/in_place.sql",
+    name = "in_place",
+    requires = ["circletree_binary_io", "postgis_wrappers"]
 );
 
 // Catalog documentation of every object (COMMENT ON), once everything exists.

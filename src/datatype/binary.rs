@@ -1,6 +1,6 @@
 #![allow(unsafe_code)] // the datum layer: pgrx FFI traits and the RECEIVE StringInfo
 //! Binary I/O (`circletree_send` / `circletree_recv`, our own bytes, not CBOR), the validated
-//! casts to and from `bytea`, and byte equality.
+//! casts to and from `bytea`, and byte equality and order (btree and hash).
 
 use super::memory::StoredBytes;
 use super::CircleTree;
@@ -55,6 +55,42 @@ fn circletree_eq(a: StoredBytes, b: StoredBytes) -> bool {
 #[pg_extern(immutable, strict, parallel_safe)]
 fn circletree_ne(a: StoredBytes, b: StoredBytes) -> bool {
     a.0 != b.0
+}
+
+/// The btree order: the stored bytes compared as unsigned bytes, a shorter prefix first (no
+/// spatial meaning; it gives `=`, `DISTINCT`, `GROUP BY`, `UNION`, sorts and merge joins).
+// Declared in sql/in_place.sql (0.7.0 on).
+#[pg_extern(sql = false)]
+fn circletree_cmp(a: StoredBytes, b: StoredBytes) -> i32 {
+    a.0.cmp(b.0) as i32
+}
+
+/// `<` in byte order.
+// Declared in sql/in_place.sql (0.7.0 on).
+#[pg_extern(sql = false)]
+fn circletree_lt(a: StoredBytes, b: StoredBytes) -> bool {
+    a.0 < b.0
+}
+
+/// `<=` in byte order.
+// Declared in sql/in_place.sql (0.7.0 on).
+#[pg_extern(sql = false)]
+fn circletree_le(a: StoredBytes, b: StoredBytes) -> bool {
+    a.0 <= b.0
+}
+
+/// `>` in byte order.
+// Declared in sql/in_place.sql (0.7.0 on).
+#[pg_extern(sql = false)]
+fn circletree_gt(a: StoredBytes, b: StoredBytes) -> bool {
+    a.0 > b.0
+}
+
+/// `>=` in byte order.
+// Declared in sql/in_place.sql (0.7.0 on).
+#[pg_extern(sql = false)]
+fn circletree_ge(a: StoredBytes, b: StoredBytes) -> bool {
+    a.0 >= b.0
 }
 
 extension_sql_file!(

@@ -11,9 +11,12 @@
 //!   and the metrics (sliver area, continuous Hausdorff distance);
 //! - [`format`]: the stored bytes (`docs/FORMAT.md`): the grid, decimals, the range coder, format
 //!   versions 1 and 2, and the text form;
-//! - [`decode`]: from a stored value back to geometry (tangents and arcs), and its picture.
+//! - [`decode`]: from a stored value back to geometry (tangents and arcs), and its picture;
+//! - [`access`]: a value rebuilt once, with an edge index, to answer where a point lies and how
+//!   far it is (the SQL predicates), and PostGIS's own geometry bytes read in place.
 #![forbid(unsafe_code)]
 
+pub mod access;
 pub mod check;
 pub mod decode;
 pub mod encode;

@@ -70,7 +70,7 @@ BEGIN
   DROP EXTENSION circletree;
 END $$;
 SET client_min_messages = warning;
-SELECT r.* FROM unnest(ARRAY['0.1.0', '0.2.0', '0.3.0', '0.4.0', '0.5.0']) v,
+SELECT r.* FROM unnest(ARRAY['0.1.0', '0.2.0', '0.3.0', '0.4.0', '0.5.0', '0.6.0']) v,
        pg_temp.from_release(v, :'fresh_objects') r;
 RESET client_min_messages;
 \c circletree_regress

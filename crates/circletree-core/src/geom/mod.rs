@@ -6,6 +6,7 @@
 
 pub(crate) mod box_grid;
 pub(crate) mod clearance;
+pub mod gserialized;
 pub mod wkb;
 
 /// A point `[x, y]`.

@@ -1,0 +1,288 @@
+-- circletree 0.6.0 -> 0.7.0 (ALTER EXTENSION circletree UPDATE).
+-- 0.7.0 uses a circletree where it is stored: btree and hash operator classes (byte order), the
+-- casts to geometry and geography, ct_intersects, ct_contains, ct_dwithin and ct_distance, the &&
+-- operators and a native GiST operator class with planner support. The = operator becomes
+-- hashable and mergeable (as a fresh install's, sql/binary_io.sql). Stored values and their
+-- format are unchanged. The definitions are those of a fresh 0.7.0 install (regress `upgrade`
+-- compares the two).
+UPDATE pg_catalog.pg_operator SET oprcanhash = true, oprcanmerge = true
+ WHERE oid = '@extschema@.=(@extschema@.circletree,@extschema@.circletree)'::pg_catalog.regoperator;
+
+-- The same text as sql/in_place.sql, which a fresh install runs.
+-- Using a circletree where it is stored (0.7.0 on; loaded by src/lib.rs with extension_sql_file!,
+-- and repeated as it is in sql/circletree--0.6.0--0.7.0.sql): byte order and hashing (btree and
+-- hash operator classes), the casts to geometry and geography, the predicates and distances
+-- answered from a cached, edge-indexed rebuild (src/access.rs), the && operators, and the native
+-- GiST index with the planner support that makes ct_intersects, ct_contains and ct_dwithin use it
+-- (src/index.rs). PostGIS's schema is read at install time, as in sql/postgis_wrappers.sql.
+
+-- Byte order: =, DISTINCT, GROUP BY, UNION, ORDER BY, merge and hash joins. No spatial meaning.
+CREATE FUNCTION @extschema@.circletree_cmp(a @extschema@.circletree, b @extschema@.circletree) RETURNS int4
+    IMMUTABLE STRICT PARALLEL SAFE LANGUAGE c AS 'MODULE_PATHNAME', 'circletree_cmp_wrapper';
+CREATE FUNCTION @extschema@.circletree_lt(a @extschema@.circletree, b @extschema@.circletree) RETURNS bool
+    IMMUTABLE STRICT PARALLEL SAFE LANGUAGE c AS 'MODULE_PATHNAME', 'circletree_lt_wrapper';
+CREATE FUNCTION @extschema@.circletree_le(a @extschema@.circletree, b @extschema@.circletree) RETURNS bool
+    IMMUTABLE STRICT PARALLEL SAFE LANGUAGE c AS 'MODULE_PATHNAME', 'circletree_le_wrapper';
+CREATE FUNCTION @extschema@.circletree_gt(a @extschema@.circletree, b @extschema@.circletree) RETURNS bool
+    IMMUTABLE STRICT PARALLEL SAFE LANGUAGE c AS 'MODULE_PATHNAME', 'circletree_gt_wrapper';
+CREATE FUNCTION @extschema@.circletree_ge(a @extschema@.circletree, b @extschema@.circletree) RETURNS bool
+    IMMUTABLE STRICT PARALLEL SAFE LANGUAGE c AS 'MODULE_PATHNAME', 'circletree_ge_wrapper';
+-- PostgreSQL's own hash of a varlena's bytes (bytea's).
+CREATE FUNCTION @extschema@.circletree_hash(ct @extschema@.circletree) RETURNS int4
+    IMMUTABLE STRICT PARALLEL SAFE LANGUAGE internal AS 'hashvarlena';
+CREATE OPERATOR @extschema@.< (LEFTARG = @extschema@.circletree, RIGHTARG = @extschema@.circletree,
+    PROCEDURE = @extschema@.circletree_lt, COMMUTATOR = >, NEGATOR = >=, RESTRICT = scalarltsel, JOIN = scalarltjoinsel);
+CREATE OPERATOR @extschema@.<= (LEFTARG = @extschema@.circletree, RIGHTARG = @extschema@.circletree,
+    PROCEDURE = @extschema@.circletree_le, COMMUTATOR = >=, NEGATOR = >, RESTRICT = scalarlesel, JOIN = scalarlejoinsel);
+CREATE OPERATOR @extschema@.> (LEFTARG = @extschema@.circletree, RIGHTARG = @extschema@.circletree,
+    PROCEDURE = @extschema@.circletree_gt, COMMUTATOR = <, NEGATOR = <=, RESTRICT = scalargtsel, JOIN = scalargtjoinsel);
+CREATE OPERATOR @extschema@.>= (LEFTARG = @extschema@.circletree, RIGHTARG = @extschema@.circletree,
+    PROCEDURE = @extschema@.circletree_ge, COMMUTATOR = <=, NEGATOR = <, RESTRICT = scalargesel, JOIN = scalargejoinsel);
+CREATE OPERATOR CLASS @extschema@.circletree_btree_ops DEFAULT FOR TYPE @extschema@.circletree USING btree AS
+    OPERATOR 1 @extschema@.<, OPERATOR 2 @extschema@.<=, OPERATOR 3 @extschema@.=,
+    OPERATOR 4 @extschema@.>=, OPERATOR 5 @extschema@.>,
+    FUNCTION 1 @extschema@.circletree_cmp(@extschema@.circletree, @extschema@.circletree);
+CREATE OPERATOR CLASS @extschema@.circletree_hash_ops DEFAULT FOR TYPE @extschema@.circletree USING hash AS
+    OPERATOR 1 @extschema@.=,
+    FUNCTION 1 @extschema@.circletree_hash(@extschema@.circletree);
+
+-- The GiST support of circletree's own (the key is PostgreSQL's box; union, penalty, split and
+-- same are the built-in box ones).
+CREATE FUNCTION @extschema@._ct_gist_compress(internal) RETURNS internal
+    IMMUTABLE STRICT PARALLEL SAFE LANGUAGE c AS 'MODULE_PATHNAME', '_ct_gist_compress_wrapper';
+CREATE FUNCTION @extschema@._ct_gist_consistent(internal, @extschema@.circletree, int2, oid, internal) RETURNS bool
+    IMMUTABLE STRICT PARALLEL SAFE LANGUAGE c AS 'MODULE_PATHNAME', '_ct_gist_consistent_wrapper';
+CREATE FUNCTION @extschema@._ct_support(internal) RETURNS internal
+    IMMUTABLE STRICT PARALLEL SAFE LANGUAGE c AS 'MODULE_PATHNAME', '_ct_support_wrapper';
+CREATE FUNCTION @extschema@._ct_overlaps_ct(a @extschema@.circletree, b @extschema@.circletree) RETURNS bool
+    IMMUTABLE STRICT PARALLEL SAFE LANGUAGE c AS 'MODULE_PATHNAME', '_ct_overlaps_ct_wrapper';
+CREATE OPERATOR @extschema@.&& (LEFTARG = @extschema@.circletree, RIGHTARG = @extschema@.circletree,
+    PROCEDURE = @extschema@._ct_overlaps_ct, COMMUTATOR = &&, RESTRICT = areasel, JOIN = areajoinsel);
+
+DO $install$
+DECLARE
+  pg text := (SELECT n.nspname FROM pg_catalog.pg_extension e
+                JOIN pg_catalog.pg_namespace n ON n.oid = e.extnamespace
+               WHERE e.extname = 'postgis');
+BEGIN
+  EXECUTE pg_catalog.format($sql$
+-- Casts: circletree::geometry is ct_decode; circletree::geography is ct_decode_geography (to
+-- longitude/latitude, EPSG:4326).
+CREATE CAST (@extschema@.circletree AS %1$I.geometry) WITH FUNCTION @extschema@.ct_decode(@extschema@.circletree);
+CREATE FUNCTION @extschema@._ct_to_geography(ct @extschema@.circletree) RETURNS %1$I.geography
+    LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE
+    AS $$ SELECT @extschema@.ct_decode_geography($1) $$;
+CREATE CAST (@extschema@.circletree AS %1$I.geography) WITH FUNCTION @extschema@._ct_to_geography(@extschema@.circletree);
+
+-- && between a circletree's envelope and a geometry's box (PostGIS's own box for the geometry).
+CREATE FUNCTION @extschema@._ct_overlaps(ct @extschema@.circletree, geom %1$I.geometry) RETURNS bool
+    IMMUTABLE STRICT PARALLEL SAFE LANGUAGE c AS 'MODULE_PATHNAME', '_ct_overlaps_wrapper';
+CREATE FUNCTION @extschema@._ct_overlaps_g(geom %1$I.geometry, ct @extschema@.circletree) RETURNS bool
+    IMMUTABLE STRICT PARALLEL SAFE LANGUAGE c AS 'MODULE_PATHNAME', '_ct_overlaps_g_wrapper';
+CREATE OPERATOR @extschema@.&& (LEFTARG = @extschema@.circletree, RIGHTARG = %1$I.geometry,
+    PROCEDURE = @extschema@._ct_overlaps, COMMUTATOR = &&, RESTRICT = areasel, JOIN = areajoinsel);
+CREATE OPERATOR @extschema@.&& (LEFTARG = %1$I.geometry, RIGHTARG = @extschema@.circletree,
+    PROCEDURE = @extschema@._ct_overlaps_g, COMMUTATOR = &&, RESTRICT = areasel, JOIN = areajoinsel);
+
+CREATE OPERATOR CLASS @extschema@.circletree_gist_ops DEFAULT FOR TYPE @extschema@.circletree USING gist AS
+    STORAGE pg_catalog.box,
+    OPERATOR 3 @extschema@.&& (@extschema@.circletree, %1$I.geometry),
+    OPERATOR 3 @extschema@.&& (@extschema@.circletree, @extschema@.circletree),
+    FUNCTION 1 @extschema@._ct_gist_consistent(internal, @extschema@.circletree, int2, oid, internal),
+    FUNCTION 2 pg_catalog.gist_box_union(internal, internal),
+    FUNCTION 3 @extschema@._ct_gist_compress(internal),
+    FUNCTION 5 pg_catalog.gist_box_penalty(internal, internal, internal),
+    FUNCTION 6 pg_catalog.gist_box_picksplit(internal, internal),
+    FUNCTION 7 pg_catalog.gist_box_same(pg_catalog.box, pg_catalog.box, internal);
+
+-- The predicates and distances, PostGIS's answers on ct_decode(ct), in both argument orders.
+CREATE FUNCTION @extschema@.ct_intersects(ct @extschema@.circletree, geom %1$I.geometry) RETURNS bool
+    IMMUTABLE STRICT PARALLEL SAFE COST 1000 SUPPORT @extschema@._ct_support
+    LANGUAGE c AS 'MODULE_PATHNAME', '_ct_intersects_wrapper';
+CREATE FUNCTION @extschema@.ct_intersects(geom %1$I.geometry, ct @extschema@.circletree) RETURNS bool
+    IMMUTABLE STRICT PARALLEL SAFE COST 1000 SUPPORT @extschema@._ct_support
+    LANGUAGE c AS 'MODULE_PATHNAME', '_ct_intersects_g_wrapper';
+CREATE FUNCTION @extschema@.ct_contains(ct @extschema@.circletree, geom %1$I.geometry) RETURNS bool
+    IMMUTABLE STRICT PARALLEL SAFE COST 1000 SUPPORT @extschema@._ct_support
+    LANGUAGE c AS 'MODULE_PATHNAME', '_ct_contains_wrapper';
+CREATE FUNCTION @extschema@.ct_contains(geom %1$I.geometry, ct @extschema@.circletree) RETURNS bool
+    IMMUTABLE STRICT PARALLEL SAFE COST 1000 SUPPORT @extschema@._ct_support
+    LANGUAGE c AS 'MODULE_PATHNAME', '_ct_contains_g_wrapper';
+CREATE FUNCTION @extschema@.ct_dwithin(ct @extschema@.circletree, geom %1$I.geometry, distance float8) RETURNS bool
+    IMMUTABLE STRICT PARALLEL SAFE COST 1000 SUPPORT @extschema@._ct_support
+    LANGUAGE c AS 'MODULE_PATHNAME', '_ct_dwithin_wrapper';
+CREATE FUNCTION @extschema@.ct_dwithin(geom %1$I.geometry, ct @extschema@.circletree, distance float8) RETURNS bool
+    IMMUTABLE STRICT PARALLEL SAFE COST 1000 SUPPORT @extschema@._ct_support
+    LANGUAGE c AS 'MODULE_PATHNAME', '_ct_dwithin_g_wrapper';
+CREATE FUNCTION @extschema@.ct_distance(ct @extschema@.circletree, geom %1$I.geometry) RETURNS float8
+    IMMUTABLE STRICT PARALLEL SAFE COST 1000
+    LANGUAGE c AS 'MODULE_PATHNAME', '_ct_distance_wrapper';
+CREATE FUNCTION @extschema@.ct_distance(geom %1$I.geometry, ct @extschema@.circletree) RETURNS float8
+    IMMUTABLE STRICT PARALLEL SAFE COST 1000
+    LANGUAGE c AS 'MODULE_PATHNAME', '_ct_distance_g_wrapper';
+$sql$, pg);
+END
+$install$;
+
+-- Every comment again: the same text as sql/comments.sql.
+-- Catalog documentation: what \dT+ circletree and \df+ ct_* show. Loaded last by src/lib.rs
+-- (extension_sql_file!), and repeated in the upgrade script of each release that changed it
+-- (sql/circletree--0.3.0--0.4.0.sql introduced it; sql/circletree--0.6.0--0.7.0.sql holds this text).
+COMMENT ON TYPE @extschema@.circletree IS
+  'A polygon stored as ordered circles (x, y, ±r), rebuilt from tangents and arcs; valid and within its recorded max_error (Hausdorff) of the original. See docs/FORMAT.md.';
+COMMENT ON FUNCTION @extschema@.ct_encode(geometry, float8, float8, float8, float8) IS
+  'ct_encode(geom, min_radius, overlap DEFAULT 0.4, dp_tolerance DEFAULT NULL, max_error DEFAULT NULL): the paper''s circles (medial circles of at least min_radius, overlapping by at most overlap, Douglas-Peucker points at dp_tolerance), repaired until ct_decode is valid and within max_error (NULL: greatest(min_radius, dp_tolerance)). Lengths in the SRID''s units.';
+COMMENT ON FUNCTION @extschema@.ct_encode_within(geometry, float8) IS
+  'ct_encode_within(geom, max_error): the fewest bytes whose ct_decode is valid and within max_error (continuous Hausdorff, in the SRID''s units).';
+COMMENT ON FUNCTION @extschema@.ct_encode(geography, float8, float8, float8, float8) IS
+  'ct_encode(geog, min_radius, ...): ct_encode in metres for longitude/latitude data: the geography projected to the WGS 84 UTM zone of its centre (ct_utm_srid), whose SRID the value keeps; ct_decode_geography brings it back.';
+COMMENT ON FUNCTION @extschema@.ct_encode_within(geography, float8) IS
+  'ct_encode_within(geog, max_error): ct_encode_within in metres for longitude/latitude data, in the UTM zone of its centre (ct_utm_srid).';
+COMMENT ON FUNCTION @extschema@.ct_encode(text, float8, float8, float8, float8) IS
+  'ct_encode(text, ...): the text read as a geometry (so an untyped literal is not ambiguous between geometry and geography).';
+COMMENT ON FUNCTION @extschema@.ct_encode_within(text, float8) IS
+  'ct_encode_within(text, max_error): the text read as a geometry.';
+COMMENT ON FUNCTION @extschema@.ct_utm_srid(geography) IS
+  'ct_utm_srid(geog): the SRID of the WGS 84 UTM zone of the centre of geog''s bounding box (32601-32660 north, 32701-32760 south; UPS 32661 north of 84N, 32761 south of 80S), where the geography overloads encode.';
+COMMENT ON FUNCTION @extschema@.ct_decode_geography(@extschema@.circletree, int) IS
+  'ct_decode_geography(ct, srid DEFAULT 4326): ct_decode(ct) transformed to the longitude/latitude SRID srid, as geography.';
+COMMENT ON FUNCTION @extschema@.ct_svg(@extschema@.circletree, geometry, int) IS
+  'ct_svg(ct, geom DEFAULT NULL, width DEFAULT 800): an SVG picture: circles inside (blue) and outside (red), boundary points (green), the rebuilt polygon (black) and, when given, the original (grey), with a legend.';
+COMMENT ON FUNCTION @extschema@._ct_svg_wkb(@extschema@.circletree, bytea, int) IS
+  'Internal: ct_svg with the original as WKB.';
+COMMENT ON FUNCTION @extschema@._ct_srid_is_lonlat(int) IS
+  'Internal: whether spatial_ref_sys gives the SRID longitude/latitude units (degrees).';
+COMMENT ON FUNCTION @extschema@._ct_check_degrees(bool, int, float8, float8, float8) IS
+  'Internal: true, or an ERROR when a longitude/latitude SRID meets a length of a degree or more (metres given by mistake).';
+COMMENT ON FUNCTION @extschema@._ct_invalid_reason(geometry) IS
+  'Internal: ST_IsValidReason of an invalid Polygon or MultiPolygon, else NULL.';
+COMMENT ON FUNCTION @extschema@.ct_decode(@extschema@.circletree) IS
+  'ct_decode(ct): the rebuilt POLYGON or MULTIPOLYGON, SRID kept, arcs stroked to the value''s grid step.';
+COMMENT ON FUNCTION @extschema@.ct_decode(@extschema@.circletree, float8) IS
+  'ct_decode(ct, arc_tolerance): the rebuilt polygon with arcs stroked so no chord lies farther than arc_tolerance from its arc (NULL: the grid step; validity is guaranteed up to the grid step).';
+COMMENT ON FUNCTION @extschema@.ct_decode_curved(@extschema@.circletree) IS
+  'ct_decode_curved(ct): the rebuilt CURVEPOLYGON or MULTISURFACE with true circular arcs, SRID kept.';
+COMMENT ON FUNCTION @extschema@.ct_envelope(@extschema@.circletree) IS
+  'ct_envelope(ct): a box holding both the original and ct_decode(ct) (the stored bounding box widened by max_error), read from the header without decoding a circle (the key of the native index, CREATE INDEX ... USING gist (ct)).';
+COMMENT ON FUNCTION @extschema@._ct_envelope_ewkb(@extschema@.circletree) IS
+  'Internal: ct_envelope as EWKB, from the header alone.';
+COMMENT ON FUNCTION @extschema@.ct_circles(@extschema@.circletree) IS
+  'ct_circles(ct): the stored circles in boundary order: part, ring, seq (1-based), centre x, y and signed radius r (> 0 inside, < 0 outside, 0 a boundary point).';
+COMMENT ON FUNCTION @extschema@.ct_ncircles(@extschema@.circletree) IS
+  'ct_ncircles(ct): number of stored circles in all rings (a repeated circle counts each time).';
+COMMENT ON FUNCTION @extschema@.ct_srid(@extschema@.circletree) IS
+  'ct_srid(ct): the SRID the value was encoded with (read from its header).';
+COMMENT ON FUNCTION @extschema@.ct_memsize(@extschema@.circletree) IS
+  'ct_memsize(ct): bytes of the value in memory, varlena header included (as ST_MemSize).';
+COMMENT ON FUNCTION @extschema@.ct_summary(@extschema@.circletree) IS
+  'ct_summary(ct): everything about a value as jsonb: format version, SRID, kind, parts, rings, circles by kind, grid, bytes, original vertices and WKB bytes, parameters.';
+COMMENT ON FUNCTION @extschema@.ct_storage_ratio(@extschema@.circletree) IS
+  'ct_storage_ratio(ct): ct_memsize over the WKB bytes of the original (recorded at encode time).';
+COMMENT ON FUNCTION @extschema@.ct_storage_ratio(@extschema@.circletree, geometry) IS
+  'ct_storage_ratio(ct, geom): pg_column_size(ct) over pg_column_size(geom).';
+COMMENT ON FUNCTION @extschema@.ct_sliver_error(@extschema@.circletree, geometry) IS
+  'ct_sliver_error(ct, geom): area of the symmetric difference between ct_decode(ct) and geom (the SRID''s units squared); an invalid geom is refused (22023).';
+COMMENT ON FUNCTION @extschema@.ct_sliver_ratio(@extschema@.circletree, geometry) IS
+  'ct_sliver_ratio(ct, geom): ct_sliver_error over ST_Area(geom).';
+COMMENT ON FUNCTION @extschema@.ct_hausdorff(@extschema@.circletree, geometry) IS
+  'ct_hausdorff(ct, geom): continuous Hausdorff distance between the boundaries of the rebuilt polygon (true arcs) and geom: whole segments, not only vertices.';
+COMMENT ON FUNCTION @extschema@.ct_hausdorff(geometry, geometry) IS
+  'ct_hausdorff(a, b): the same continuous Hausdorff distance between the boundaries of any two (Multi)Polygons, e.g. to measure ST_Simplify''s result the way circletree is measured.';
+COMMENT ON FUNCTION @extschema@.ct_sweep(geometry, float8[], float8[], float8[]) IS
+  'ct_sweep(geom, min_radius[], overlap[], dp_tolerance[]): the paper''s experiment: one ct_encode per combination, with circles by kind, bytes, storage ratio, sliver ratio, Hausdorff distance and validity.';
+COMMENT ON FUNCTION @extschema@._ct_encode_wkb(bytea, int, text, float8, float8, float8, float8) IS
+  'Internal: ct_encode on WKB with PostGIS''s verdict passed in (called by ct_encode up to release 0.5.0).';
+COMMENT ON FUNCTION @extschema@._ct_encode_within_wkb(bytea, int, text, float8) IS
+  'Internal: ct_encode_within on WKB with PostGIS''s verdict passed in (called by ct_encode_within up to release 0.5.0).';
+COMMENT ON FUNCTION @extschema@._ct_encode_geom(geometry, bytea, int, regprocedure, regprocedure, float8, float8, float8, float8) IS
+  'Internal: ct_encode of the geometry (its WKB and SRID), asking PostGIS''s ST_IsValid and ST_IsValidReason (the two functions given) beside the encoder (called by ct_encode).';
+COMMENT ON FUNCTION @extschema@._ct_encode_within_geom(geometry, bytea, int, regprocedure, regprocedure, float8) IS
+  'Internal: ct_encode_within of the geometry (its WKB and SRID), asking PostGIS''s ST_IsValid and ST_IsValidReason (the two functions given) beside the encoder (called by ct_encode_within).';
+COMMENT ON FUNCTION @extschema@._ct_decode_ewkb(@extschema@.circletree, float8) IS
+  'Internal: the rebuilt polygon as EWKB (called by ct_decode).';
+COMMENT ON FUNCTION @extschema@._ct_decode_curved_ewkt(@extschema@.circletree) IS
+  'Internal: the rebuilt polygon with true arcs as EWKT (called by ct_decode_curved).';
+COMMENT ON FUNCTION @extschema@._ct_decode_wkb(@extschema@.circletree, float8) IS
+  'Internal, kept for databases not yet updated from 0.3.0: the rebuilt polygon as WKB.';
+COMMENT ON FUNCTION @extschema@._ct_decode_curved_wkt(@extschema@.circletree) IS
+  'Internal, kept for databases not yet updated from 0.3.0: the rebuilt polygon with true arcs as WKT.';
+COMMENT ON FUNCTION @extschema@._ct_sliver_error_wkb(@extschema@.circletree, bytea) IS
+  'Internal: ct_sliver_error against WKB (0.4.0''s wrappers; 0.5.0''s pass the validity too).';
+COMMENT ON FUNCTION @extschema@._ct_sliver_error_wkb(@extschema@.circletree, bytea, text) IS
+  'Internal: ct_sliver_error against WKB, refusing an invalid original (its ST_IsValidReason).';
+COMMENT ON FUNCTION @extschema@._ct_hausdorff_wkb(@extschema@.circletree, bytea) IS
+  'Internal: ct_hausdorff against WKB.';
+COMMENT ON FUNCTION @extschema@._ct_hausdorff_wkb2(bytea, bytea) IS
+  'Internal: ct_hausdorff between two WKB polygons.';
+COMMENT ON FUNCTION @extschema@.circletree_in(cstring) IS
+  'Text input: SRID=n;CIRCLETREE(...) as circletree::text prints it (docs/FORMAT.md).';
+COMMENT ON FUNCTION @extschema@.circletree_out(@extschema@.circletree) IS
+  'Text output: every header field and circle, exact (reads back to the same bytes).';
+COMMENT ON FUNCTION @extschema@.circletree_recv(internal) IS
+  'Binary input (COPY BINARY, binary protocol): the stored bytes, fully checked.';
+COMMENT ON FUNCTION @extschema@.circletree_send(@extschema@.circletree) IS
+  'Binary output: the stored bytes.';
+COMMENT ON FUNCTION @extschema@.circletree_eq(@extschema@.circletree, @extschema@.circletree) IS
+  'Byte equality of two values.';
+COMMENT ON FUNCTION @extschema@.circletree_ne(@extschema@.circletree, @extschema@.circletree) IS
+  'Byte inequality of two values.';
+COMMENT ON FUNCTION @extschema@.circletree_to_bytea(@extschema@.circletree) IS
+  'The stored bytes as bytea (circletree::bytea).';
+COMMENT ON FUNCTION @extschema@.circletree_from_bytea(bytea) IS
+  'bytea::circletree: stored bytes of any format version, fully checked (22P03 when corrupt).';
+COMMENT ON OPERATOR @extschema@.= (@extschema@.circletree, @extschema@.circletree) IS
+  'Byte equality of two values.';
+COMMENT ON OPERATOR @extschema@.<> (@extschema@.circletree, @extschema@.circletree) IS
+  'Byte inequality of two values.';
+COMMENT ON FUNCTION @extschema@.circletree_cmp(@extschema@.circletree, @extschema@.circletree) IS
+  'Byte order of two values (-1, 0, 1): the btree operator class, for ORDER BY, DISTINCT, GROUP BY and merge joins; no spatial meaning.';
+COMMENT ON FUNCTION @extschema@.circletree_lt(@extschema@.circletree, @extschema@.circletree) IS
+  'Byte order: a < b.';
+COMMENT ON FUNCTION @extschema@.circletree_le(@extschema@.circletree, @extschema@.circletree) IS
+  'Byte order: a <= b.';
+COMMENT ON FUNCTION @extschema@.circletree_gt(@extschema@.circletree, @extschema@.circletree) IS
+  'Byte order: a > b.';
+COMMENT ON FUNCTION @extschema@.circletree_ge(@extschema@.circletree, @extschema@.circletree) IS
+  'Byte order: a >= b.';
+COMMENT ON FUNCTION @extschema@.circletree_hash(@extschema@.circletree) IS
+  'Hash of the stored bytes (PostgreSQL''s hashvarlena, as bytea''s): the hash operator class, for hash joins and hashed GROUP BY.';
+COMMENT ON OPERATOR @extschema@.< (@extschema@.circletree, @extschema@.circletree) IS 'Byte order.';
+COMMENT ON OPERATOR @extschema@.<= (@extschema@.circletree, @extschema@.circletree) IS 'Byte order.';
+COMMENT ON OPERATOR @extschema@.> (@extschema@.circletree, @extschema@.circletree) IS 'Byte order.';
+COMMENT ON OPERATOR @extschema@.>= (@extschema@.circletree, @extschema@.circletree) IS 'Byte order.';
+COMMENT ON FUNCTION @extschema@._ct_to_geography(@extschema@.circletree) IS
+  'Internal: the circletree::geography cast (ct_decode_geography(ct), in EPSG:4326).';
+COMMENT ON FUNCTION @extschema@._ct_overlaps(@extschema@.circletree, geometry) IS
+  'Internal: ct && geom, the envelope meets the geometry''s box.';
+COMMENT ON FUNCTION @extschema@._ct_overlaps_g(geometry, @extschema@.circletree) IS
+  'Internal: geom && ct.';
+COMMENT ON FUNCTION @extschema@._ct_overlaps_ct(@extschema@.circletree, @extschema@.circletree) IS
+  'Internal: a && b, the two envelopes meet.';
+COMMENT ON OPERATOR @extschema@.&& (@extschema@.circletree, geometry) IS
+  'The envelope (ct_envelope) meets the geometry''s box; indexed by CREATE INDEX ... USING gist (ct).';
+COMMENT ON OPERATOR @extschema@.&& (geometry, @extschema@.circletree) IS
+  'The geometry''s box meets the envelope (ct_envelope).';
+COMMENT ON OPERATOR @extschema@.&& (@extschema@.circletree, @extschema@.circletree) IS
+  'The two envelopes (ct_envelope) meet.';
+COMMENT ON FUNCTION @extschema@._ct_gist_compress(internal) IS
+  'Internal: GiST compress, a circletree to its envelope as a box.';
+COMMENT ON FUNCTION @extschema@._ct_gist_consistent(internal, @extschema@.circletree, int2, oid, internal) IS
+  'Internal: GiST consistent for &&.';
+COMMENT ON FUNCTION @extschema@._ct_support(internal) IS
+  'Internal: planner support of ct_intersects, ct_contains and ct_dwithin (an index condition on a circletree GiST index).';
+COMMENT ON FUNCTION @extschema@.ct_intersects(@extschema@.circletree, geometry) IS
+  'ct_intersects(ct, geom): ST_Intersects(ct_decode(ct), geom), answered from a cached, edge-indexed rebuild; uses a GiST index on ct with no && written.';
+COMMENT ON FUNCTION @extschema@.ct_intersects(geometry, @extschema@.circletree) IS
+  'ct_intersects(geom, ct): ST_Intersects(geom, ct_decode(ct)).';
+COMMENT ON FUNCTION @extschema@.ct_contains(@extschema@.circletree, geometry) IS
+  'ct_contains(ct, geom): ST_Contains(ct_decode(ct), geom), from a cached, edge-indexed rebuild; uses a GiST index on ct.';
+COMMENT ON FUNCTION @extschema@.ct_contains(geometry, @extschema@.circletree) IS
+  'ct_contains(geom, ct): ST_Contains(geom, ct_decode(ct)).';
+COMMENT ON FUNCTION @extschema@.ct_dwithin(@extschema@.circletree, geometry, float8) IS
+  'ct_dwithin(ct, geom, distance): ST_DWithin(ct_decode(ct), geom, distance), from a cached, edge-indexed rebuild; uses a GiST index on ct.';
+COMMENT ON FUNCTION @extschema@.ct_dwithin(geometry, @extschema@.circletree, float8) IS
+  'ct_dwithin(geom, ct, distance): ST_DWithin(geom, ct_decode(ct), distance).';
+COMMENT ON FUNCTION @extschema@.ct_distance(@extschema@.circletree, geometry) IS
+  'ct_distance(ct, geom): ST_Distance(ct_decode(ct), geom), from a cached, edge-indexed rebuild.';
+COMMENT ON FUNCTION @extschema@.ct_distance(geometry, @extschema@.circletree) IS
+  'ct_distance(geom, ct): ST_Distance(geom, ct_decode(ct)).';
