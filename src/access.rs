@@ -33,12 +33,12 @@ enum Op {
 }
 
 impl Op {
-    fn postgis(self) -> (&'static str, usize) {
+    fn postgis(self) -> (&'static std::ffi::CStr, usize) {
         match self {
-            Op::Intersects => ("st_intersects", 2),
-            Op::Contains => ("st_contains", 2),
-            Op::DWithin => ("st_dwithin", 3),
-            Op::Distance => ("st_distance", 2),
+            Op::Intersects => (c"st_intersects", 2),
+            Op::Contains => (c"st_contains", 2),
+            Op::DWithin => (c"st_dwithin", 3),
+            Op::Distance => (c"st_distance", 2),
         }
     }
 }
@@ -250,7 +250,7 @@ unsafe fn postgis_answer(
 }
 
 /// PostGIS's `ST_GeomFromEWKB(bytea)` and the predicate's own function, from the schema of the
-/// geometry type this call takes.
+/// geometry type's input function (catalog look-ups only: this may run in a parallel worker).
 ///
 /// # Safety
 /// `fcinfo` is the current call's.
@@ -266,26 +266,19 @@ unsafe fn lookup(fcinfo: pg_sys::FunctionCallInfo, op: Op) -> Box<[pg_sys::FmgrI
         })
         .unwrap_or(pg_sys::InvalidOid);
     let (name, nargs) = op.postgis();
-    let args = if nargs == 3 {
-        format!("{0} {0} {1}", geometry.to_u32(), pg_sys::FLOAT8OID.to_u32())
-    } else {
-        format!("{0} {0}", geometry.to_u32())
+    let args = [geometry, geometry, pg_sys::FLOAT8OID];
+    // SAFETY: catalog lookups; LookupFuncName raises the usual ERROR when a function is missing
+    let find = |name: &std::ffi::CStr, args: &[pg_sys::Oid]| unsafe {
+        let (mut input, mut ioparam) = (pg_sys::InvalidOid, pg_sys::InvalidOid);
+        pg_sys::getTypeInputInfo(geometry, &mut input, &mut ioparam);
+        let nsp = pg_sys::get_namespace_name(pg_sys::get_func_namespace(input));
+        let mut qualified = pgrx::PgList::<pg_sys::Node>::new();
+        qualified.push(pg_sys::makeString(nsp).cast());
+        qualified.push(pg_sys::makeString(pg_sys::pstrdup(name.as_ptr())).cast());
+        pg_sys::LookupFuncName(qualified.into_pg(), args.len() as i32, args.as_ptr(), false)
     };
-    let find = |name: &str, args: &str| -> pg_sys::Oid {
-        let q = format!(
-            "SELECT p.oid FROM pg_catalog.pg_proc p JOIN pg_catalog.pg_type t ON t.typnamespace = p.pronamespace \
-              WHERE t.oid = {} AND p.proname = '{name}' AND p.proargtypes = '{args}'::pg_catalog.oidvector",
-            geometry.to_u32()
-        );
-        match Spi::get_one::<pg_sys::Oid>(&q) {
-            Ok(Some(oid)) => oid,
-            _ => {
-                pgrx::error!("circletree: PostGIS's {name} was not found beside its geometry type")
-            }
-        }
-    };
-    let from_ewkb = find("st_geomfromewkb", &pg_sys::BYTEAOID.to_u32().to_string());
-    let pred = find(name, &args);
+    let from_ewkb = find(c"st_geomfromewkb", &[pg_sys::BYTEAOID]);
+    let pred = find(name, &args[..nargs]);
     // SAFETY: zeroed FmgrInfo filled by fmgr_info_cxt, in the function's memory context
     unsafe {
         let mut f: Box<[pg_sys::FmgrInfo; 2]> = Box::new(std::mem::zeroed());

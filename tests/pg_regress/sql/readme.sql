@@ -14,3 +14,10 @@ SELECT name, ct_srid(ct) AS utm_srid, ST_SRID(ct_decode_geography(ct)::geometry)
        ct_hausdorff(ct, ST_Transform(geom, ct_srid(ct))) <= 10 AS within_10_m
   FROM (SELECT name, geom, ct_encode_within(geom::geography, 10) AS ct
           FROM (SELECT name, ST_Transform(geom, 4326) AS geom FROM coast WHERE name = 'rarotonga') g) s;
+CREATE TABLE coast_ct AS SELECT name, ct_encode_within(geom, 10) AS ct FROM coast;
+CREATE INDEX coast_ct_idx ON coast_ct USING gist (ct);
+SELECT c.name, ct_intersects(c.ct, ST_PointOnSurface(g.geom)) AS holds_a_point_inside,
+       round(ct_distance(c.ct, ST_Translate(ST_PointOnSurface(g.geom), 1e5, 0))) > 0 AS far_point_is_away,
+       round((ST_Area(c.ct::geometry) / ST_Area(g.geom))::numeric, 3) AS area_ratio
+  FROM coast_ct c JOIN coast g USING (name) WHERE name = 'rarotonga';
+DROP TABLE coast_ct;
