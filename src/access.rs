@@ -140,7 +140,7 @@ unsafe fn toast_pointer(d: pg_sys::Datum) -> Option<(u32, u32)> {
     // SAFETY: a varlena has at least its header byte; an external one its tag and pointer
     unsafe {
         // VARATT_IS_EXTERNAL_ONDISK: a 1-byte header of 0x01 (little endian) and VARTAG_ONDISK
-        if *p != 0x01 || u32::from(*p.add(1)) != pg_sys::vartag_external::VARTAG_ONDISK as u32 {
+        if *p != 0x01 || u32::from(*p.add(1)) != pg_sys::vartag_external::VARTAG_ONDISK {
             return None;
         }
         let mut ext = [0u8; 16];

@@ -69,9 +69,9 @@ impl Strips {
         s.edges = vec![0; s.starts[nstrips] as usize];
         for i in 0..nedges {
             let (a, b) = s.edge_strips(i);
-            for k in a..=b {
-                s.edges[next[k] as usize] = i as u32;
-                next[k] += 1;
+            for slot in &mut next[a..=b] {
+                s.edges[*slot as usize] = i as u32;
+                *slot += 1;
             }
         }
         s
