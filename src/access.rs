@@ -267,15 +267,8 @@ unsafe fn lookup(fcinfo: pg_sys::FunctionCallInfo, op: Op) -> Box<[pg_sys::FmgrI
         .unwrap_or(pg_sys::InvalidOid);
     let (name, nargs) = op.postgis();
     let args = [geometry, geometry, pg_sys::FLOAT8OID];
-    // SAFETY: catalog lookups; LookupFuncName raises the usual ERROR when a function is missing
-    let find = |name: &std::ffi::CStr, args: &[pg_sys::Oid]| unsafe {
-        let (mut input, mut ioparam) = (pg_sys::InvalidOid, pg_sys::InvalidOid);
-        pg_sys::getTypeInputInfo(geometry, &mut input, &mut ioparam);
-        let nsp = pg_sys::get_namespace_name(pg_sys::get_func_namespace(input));
-        let mut qualified = pgrx::PgList::<pg_sys::Node>::new();
-        qualified.push(pg_sys::makeString(nsp).cast());
-        qualified.push(pg_sys::makeString(pg_sys::pstrdup(name.as_ptr())).cast());
-        pg_sys::LookupFuncName(qualified.into_pg(), args.len() as i32, args.as_ptr(), false)
+    let find = |name: &std::ffi::CStr, args: &[pg_sys::Oid]| {
+        crate::postgis::postgis_function(geometry, name, args, false)
     };
     let from_ewkb = find(c"st_geomfromewkb", &[pg_sys::BYTEAOID]);
     let pred = find(name, &args[..nargs]);

@@ -230,24 +230,13 @@ fn _ct_support(req: Internal) -> Internal {
     }
 }
 
-/// PostGIS's `ST_Expand(geometry, float8)`, from the schema of the geometry type's input function.
-///
-/// # Safety
-/// Catalog lookups only.
-unsafe fn st_expand(geometry: pg_sys::Oid) -> Option<pg_sys::Oid> {
-    // SAFETY: plain catalog calls
-    unsafe {
-        let (mut input, mut ioparam) = (pg_sys::InvalidOid, pg_sys::InvalidOid);
-        pg_sys::getTypeInputInfo(geometry, &mut input, &mut ioparam);
-        let nsp = pg_sys::get_namespace_name(pg_sys::get_func_namespace(input));
-        if nsp.is_null() {
-            return None;
-        }
-        let mut name = PgList::<pg_sys::Node>::new();
-        name.push(pg_sys::makeString(nsp).cast());
-        name.push(pg_sys::makeString(pg_sys::pstrdup(c"st_expand".as_ptr())).cast());
-        let args = [geometry, pg_sys::FLOAT8OID];
-        let f = pg_sys::LookupFuncName(name.into_pg(), 2, args.as_ptr(), true);
-        (f != pg_sys::InvalidOid).then_some(f)
-    }
+/// PostGIS's `ST_Expand(geometry, float8)`.
+fn st_expand(geometry: pg_sys::Oid) -> Option<pg_sys::Oid> {
+    let f = crate::postgis::postgis_function(
+        geometry,
+        c"st_expand",
+        &[geometry, pg_sys::FLOAT8OID],
+        true,
+    );
+    (f != pg_sys::InvalidOid).then_some(f)
 }

@@ -221,3 +221,32 @@ fn check_function(f: pg_sys::Oid, arg: pg_sys::Oid, returns: pg_sys::Oid, name: 
         }
     }
 }
+
+/// A function of PostGIS's by name and argument types, looked up in the schema of the geometry
+/// type's input function (catalog look-ups only, so also in a parallel worker or the planner).
+/// `InvalidOid` when missing and `missing_ok`, else the usual ERROR.
+pub(crate) fn postgis_function(
+    geometry: pg_sys::Oid,
+    name: &std::ffi::CStr,
+    args: &[pg_sys::Oid],
+    missing_ok: bool,
+) -> pg_sys::Oid {
+    // SAFETY: catalog calls on a type OID; the name list is built in the current memory context
+    unsafe {
+        let (mut input, mut ioparam) = (pg_sys::InvalidOid, pg_sys::InvalidOid);
+        pg_sys::getTypeInputInfo(geometry, &mut input, &mut ioparam);
+        let nsp = pg_sys::get_namespace_name(pg_sys::get_func_namespace(input));
+        if nsp.is_null() {
+            return pg_sys::InvalidOid;
+        }
+        let mut qualified = pgrx::PgList::<pg_sys::Node>::new();
+        qualified.push(pg_sys::makeString(nsp).cast());
+        qualified.push(pg_sys::makeString(pg_sys::pstrdup(name.as_ptr())).cast());
+        pg_sys::LookupFuncName(
+            qualified.into_pg(),
+            args.len() as i32,
+            args.as_ptr(),
+            missing_ok,
+        )
+    }
+}
