@@ -119,6 +119,7 @@ fn _ct_gist_consistent(
     strategy: i16,
     subtype: pg_sys::Oid,
     recheck: Internal,
+    fcinfo: pg_sys::FunctionCallInfo,
 ) -> bool {
     let (Some(e), Some(q)) = (entry.unwrap(), query.unwrap()) else {
         return false;
@@ -139,13 +140,33 @@ fn _ct_gist_consistent(
         if let Some(r) = recheck.unwrap() {
             *r.cast_mut_ptr::<bool>() = unknown;
         }
-        let q = if subtype == CircleTree::type_oid() {
+        let q = if subtype == circletree_oid(fcinfo) {
             ct_box(q)
         } else {
             geom_box(q)
         };
         let Some(q) = q else { return false };
         unknown || overlaps(&key, &q)
+    }
+}
+
+/// circletree's type OID, kept in the support function's `fn_extra` (the index's relcache entry
+/// holds it, and goes with the extension): looking it up by name parses a type name.
+///
+/// # Safety
+/// `fcinfo` is the current call's.
+unsafe fn circletree_oid(fcinfo: pg_sys::FunctionCallInfo) -> pg_sys::Oid {
+    // SAFETY: this call's flinfo; fn_extra is ours, allocated in its memory context
+    unsafe {
+        let flinfo = (*fcinfo).flinfo;
+        if (*flinfo).fn_extra.is_null() {
+            let slot =
+                pg_sys::MemoryContextAlloc((*flinfo).fn_mcxt, std::mem::size_of::<pg_sys::Oid>())
+                    .cast::<pg_sys::Oid>();
+            *slot = CircleTree::type_oid();
+            (*flinfo).fn_extra = slot.cast();
+        }
+        *((*flinfo).fn_extra as *const pg_sys::Oid)
     }
 }
 
