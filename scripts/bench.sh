@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates BENCHMARKS.md (and docs/paper_experiment.svg) from this commit: release build and
 # install into the local PostgreSQL 15, load the 55 public polygons and the 27 held-out ones, run
-# bench/benchmarks.sql (sizes and errors of ct_encode_within and ct_encode against ST_Simplify and
-# ST_SimplifyPreserveTopology + TWKB, the paper's experiment, speed against PostGIS's functions),
+# bench/benchmarks.sql and bench/in_place.sql (sizes and errors of ct_encode_within and ct_encode against ST_Simplify and
+# ST_SimplifyPreserveTopology + TWKB, the paper's experiment, speed against PostGIS's functions, joins in place),
 # the core's bytes_breakdown (format v1 against v2, where the bytes go) and decode_speed (v1
 # against v2) examples, time both encoders alone on one synthetic coastline of 1e3 .. 1e6 vertices
 # (time, the best of three runs, and peak memory), then write the report with scripts/bench_report.py (LZMA2 of every TWKB
@@ -24,6 +24,8 @@ psql -X -q -v ON_ERROR_STOP=1 -d "$db" -f bench/benchmarks.sql
 for t in bench_rows bench_sweep bench_speed; do
   psql -X -q -v ON_ERROR_STOP=1 -d "$db" -c "\\copy $t TO STDOUT WITH (FORMAT csv, HEADER true)" >"$out/$t.csv"
 done
+psql -X -q -v ON_ERROR_STOP=1 -d "$db" -f bench/in_place.sql
+psql -X -q -v ON_ERROR_STOP=1 -d "$db" -c "\\copy ip_times TO STDOUT WITH (FORMAT csv, HEADER true)" >"$out/in_place.csv"
 echo "== SQL benchmarks took $(($(date +%s) - start)) s"
 
 echo "== format v1 against v2, where the bytes go (core example bytes_breakdown)"

@@ -315,6 +315,25 @@ w("Targets: encode at most 7x ST_AsTWKB(ST_Simplify(geom, 10, true), 0), ct_deco
 w("")
 
 # scaling
+w("## In place: joins on the circletree column")
+w("")
+w("`bench/in_place.sql`: each dataset in EPSG:3857, `g10 = ST_Simplify(geom, 10, true)` and the original `orig`, each")
+w("GiST-indexed, beside `c10 = ct_encode_within(geom, 10)` with its native GiST index (`USING gist (c10)`); 22,000")
+w("pseudo-random points in the polygons' envelopes, 2,000 windows of 2 km around them. The circletree joins are")
+w("`ct_intersects(c10, pt)`, `ct_dwithin(c10, pt, 500)` and `ct_intersects(c10, window)` with no `&&` written;")
+w("the geometry joins PostGIS's `ST_Intersects` and `ST_DWithin`. One run each, the server's defaults (JIT on);")
+w("ratios are circletree's time over the simplified column's. Row counts differ from `g10`'s by the two")
+w("simplifications' own differences (regress `in_place` checks circletree's against PostGIS's on `ct_decode`).")
+w("")
+w("| dataset | join | orig ms | g10 ms | c10 ms | c10 / g10 | c10 rows | g10 rows |")
+w("|---|---|---:|---:|---:|---:|---:|---:|")
+times = {}
+for r in rows("in_place"):
+    times.setdefault((r["dataset"], r["query"]), {})[r["column_"]] = r
+for (ds, q), c in sorted(times.items()):
+    o, g, t = num(c["orig"]["ms"]), num(c["g10"]["ms"]), num(c["c10"]["ms"])
+    w(f"| {ds} | {q} | {o:,.0f} | {g:,.0f} | {t:,.0f} | {t / g:.2f} | {int(c['c10']['rows']):,} | {int(c['g10']['rows']):,} |")
+w("")
 w("## Scaling")
 w("")
 w("`target/release/examples/scaling n` under `/usr/bin/time`: one synthetic coastline of n vertices")

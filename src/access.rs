@@ -5,9 +5,9 @@
 //! ([`circletree_core::access::Prepared`]), keyed by their TOAST pointer (so a cached value is not
 //! even detoasted) or by their bytes, least recently used out first beyond [`CACHE_BYTES`].
 //!
-//! A point of the value's SRID is answered here, with PostGIS's own arithmetic. Anything else
-//! (another geometry type, another SRID, a negative distance) goes to PostGIS's own function on
-//! the rebuilt geometry, so the answer and the error are PostGIS's.
+//! A point is answered here, with PostGIS's own arithmetic; another geometry type goes to
+//! PostGIS's own function on the rebuilt geometry, so the answer is PostGIS's. Mixed SRIDs and a
+//! negative distance are refused before either, with PostGIS's message as 22023 and a hint.
 
 use crate::datatype::CircleTree;
 use crate::error::OrRaise;
@@ -16,6 +16,7 @@ use circletree_core::geom::gserialized;
 use pgrx::datum::Internal;
 use pgrx::memcxt::PgMemoryContexts;
 use pgrx::pg_sys;
+use pgrx::pg_sys::panic::ErrorReport;
 use pgrx::prelude::*;
 use pgrx::{FromDatum, IntoDatum};
 use std::collections::HashMap;
@@ -186,14 +187,28 @@ unsafe fn answer(
     // SAFETY: a geometry datum is a varlena (a point's is small, never toasted out of line)
     let g = unsafe { <&[u8]>::from_polymorphic_datum(geom, false, pg_sys::InvalidOid) }
         .and_then(gserialized::read);
-    if let Some(g) = g.filter(|g| g.srid == prep.srid && !g.geodetic) {
+    if let Some(g) = &g {
+        if g.srid != prep.srid {
+            mixed_srids(op, &prep, g);
+        }
+    }
+    if op == Op::DWithin && d < 0.0 {
+        ErrorReport::new(
+            PgSqlErrorCode::ERRCODE_INVALID_PARAMETER_VALUE,
+            "ct_dwithin: the distance cannot be less than zero (as ST_DWithin's tolerance)",
+            "circletree",
+        )
+        .set_hint("Pass a distance of 0 or more, in the units of the SRID.")
+        .report(PgLogLevel::ERROR);
+    }
+    if let Some(g) = g.filter(|g| !g.geodetic) {
         let fast = match (op, g.point) {
             (Op::Distance, _) if g.empty || prep.is_empty() => return None,
             (Op::Intersects, Some(p)) => Some((prep.locate(p) != Location::Outside).into_datum()),
             (Op::Contains, Some(p)) if ct_first => {
                 Some((prep.locate(p) == Location::Inside).into_datum())
             }
-            (Op::DWithin, Some(p)) if d >= 0.0 => Some(prep.dwithin(p, d).into_datum()),
+            (Op::DWithin, Some(p)) => Some(prep.dwithin(p, d).into_datum()),
             (Op::Distance, Some(p)) => prep.distance(p).into_datum().map(Some),
             _ => None,
         };
@@ -203,6 +218,54 @@ unsafe fn answer(
     }
     // SAFETY: per this function's contract
     Some(unsafe { postgis_answer(site, fcinfo, op, &prep, geom, ct_first, d) })
+}
+
+/// PostGIS's message for mixed SRIDs, under the circletree function's name, as 22023 with a hint.
+fn mixed_srids(op: Op, prep: &Prepared, g: &gserialized::Serialized) -> ! {
+    const NAMES: [&str; 16] = [
+        "Unknown",
+        "Point",
+        "LineString",
+        "Polygon",
+        "MultiPoint",
+        "MultiLineString",
+        "MultiPolygon",
+        "GeometryCollection",
+        "CircularString",
+        "CompoundCurve",
+        "CurvePolygon",
+        "MultiCurve",
+        "MultiSurface",
+        "PolyhedralSurface",
+        "Triangle",
+        "Tin",
+    ];
+    let name = |k: u32| NAMES.get(k as usize).copied().unwrap_or("Unknown");
+    let ct = if prep.kind == circletree_core::geom::Kind::Polygon {
+        3
+    } else {
+        6
+    };
+    let f = match op {
+        Op::Intersects => "ct_intersects",
+        Op::Contains => "ct_contains",
+        Op::DWithin => "ct_dwithin",
+        Op::Distance => "ct_distance",
+    };
+    ErrorReport::new(
+        PgSqlErrorCode::ERRCODE_INVALID_PARAMETER_VALUE,
+        format!(
+            "{f}: Operation on mixed SRID geometries ({}, {}) != ({}, {})",
+            name(ct),
+            prep.srid,
+            name(g.kind),
+            g.srid
+        ),
+        "circletree",
+    )
+    .set_hint("Bring both to one SRID first, e.g. ST_Transform(geom, ct_srid(ct)).")
+    .report(PgLogLevel::ERROR);
+    unreachable!("ereport(ERROR) returned") // ok: report(ERROR) never returns (it unwinds to pgrx's guard)
 }
 
 /// PostGIS's own function on the rebuilt geometry.
