@@ -6,7 +6,7 @@
 -- column is circletree's time over the simplified column's.
 \set ON_ERROR_STOP on
 SET client_min_messages = warning;
-DROP TABLE IF EXISTS ip_g, ip_pts, ip_win, ip_times;
+DROP TABLE IF EXISTS ip_g, ip_pts, ip_win, ip_times, ip_mem;
 CREATE TABLE ip_g AS
 SELECT dataset, name, g3857 AS orig, ST_Simplify(g3857, 10, true) AS g10, ct_encode_within(g3857, 10) AS c10
   FROM (SELECT dataset, name, ST_Transform(geom, 3857) AS g3857 FROM coast) s;
@@ -53,3 +53,43 @@ SELECT t.dataset, t.query, o.ms::int AS orig_ms, g.ms::int AS g10_ms, t.ms::int 
  WHERE t.column_ = 'c10' AND g.column_ = 'g10' AND o.column_ = 'orig' ORDER BY 1, 2;
 SELECT dataset, pg_size_pretty(sum(pg_column_size(orig))) AS orig, pg_size_pretty(sum(pg_column_size(g10))) AS g10,
        pg_size_pretty(sum(pg_column_size(c10))) AS c10 FROM ip_g GROUP BY 1 ORDER BY 1;
+-- Peak backend memory: each join alone in a new backend, then the backend's peak resident set
+-- (VmHWM, which counts the shared buffers it touched) and a new backend's peak after SELECT 1.
+CREATE TABLE ip_mem(dataset text, query text, column_ text, peak_kb bigint);
+\set peak 'INSERT INTO ip_mem SELECT :''ds'', :''q'', :''col'', (regexp_match(pg_read_file(''/proc/'' || pg_backend_pid() || ''/status''), ''VmHWM:\\s+(\\d+)''))[1]::bigint;'
+\c
+\set ds '' \set q 'new backend' \set col ''
+SELECT 1 \g /dev/null
+:peak
+\c
+\set ds public \set q 'points in polygons' \set col g10
+SELECT count(*) FROM ip_pts p JOIN ip_g g ON g.dataset = :'ds' AND ST_Intersects(g.g10, p.pt) WHERE p.dataset = :'ds' \g /dev/null
+:peak
+\c
+\set ds public \set q 'points in polygons' \set col c10
+SELECT count(*) FROM ip_pts p JOIN ip_g g ON g.dataset = :'ds' AND ct_intersects(g.c10, p.pt) WHERE p.dataset = :'ds' \g /dev/null
+:peak
+\c
+\set ds public \set q 'windows of 2 km' \set col g10
+SELECT count(*) FROM ip_win w JOIN ip_g g ON g.dataset = :'ds' AND ST_Intersects(g.g10, w.w) WHERE w.dataset = :'ds' \g /dev/null
+:peak
+\c
+\set ds public \set q 'windows of 2 km' \set col c10
+SELECT count(*) FROM ip_win w JOIN ip_g g ON g.dataset = :'ds' AND ct_intersects(g.c10, w.w) WHERE w.dataset = :'ds' \g /dev/null
+:peak
+\c
+\set ds holdout \set q 'points in polygons' \set col g10
+SELECT count(*) FROM ip_pts p JOIN ip_g g ON g.dataset = :'ds' AND ST_Intersects(g.g10, p.pt) WHERE p.dataset = :'ds' \g /dev/null
+:peak
+\c
+\set ds holdout \set q 'points in polygons' \set col c10
+SELECT count(*) FROM ip_pts p JOIN ip_g g ON g.dataset = :'ds' AND ct_intersects(g.c10, p.pt) WHERE p.dataset = :'ds' \g /dev/null
+:peak
+\c
+\set ds holdout \set q 'windows of 2 km' \set col g10
+SELECT count(*) FROM ip_win w JOIN ip_g g ON g.dataset = :'ds' AND ST_Intersects(g.g10, w.w) WHERE w.dataset = :'ds' \g /dev/null
+:peak
+\c
+\set ds holdout \set q 'windows of 2 km' \set col c10
+SELECT count(*) FROM ip_win w JOIN ip_g g ON g.dataset = :'ds' AND ct_intersects(g.c10, w.w) WHERE w.dataset = :'ds' \g /dev/null
+:peak

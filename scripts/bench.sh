@@ -26,6 +26,7 @@ for t in bench_rows bench_sweep bench_speed; do
 done
 psql -X -q -v ON_ERROR_STOP=1 -d "$db" -f bench/in_place.sql
 psql -X -q -v ON_ERROR_STOP=1 -d "$db" -c "\\copy ip_times TO STDOUT WITH (FORMAT csv, HEADER true)" >"$out/in_place.csv"
+psql -X -q -v ON_ERROR_STOP=1 -d "$db" -c "\\copy ip_mem TO STDOUT WITH (FORMAT csv, HEADER true)" >"$out/in_place_mem.csv"
 echo "== SQL benchmarks took $(($(date +%s) - start)) s"
 
 echo "== format v1 against v2, where the bytes go (core example bytes_breakdown)"

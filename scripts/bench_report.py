@@ -334,6 +334,22 @@ for (ds, q), c in sorted(times.items()):
     o, g, t = num(c["orig"]["ms"]), num(c["g10"]["ms"]), num(c["c10"]["ms"])
     w(f"| {ds} | {q} | {o:,.0f} | {g:,.0f} | {t:,.0f} | {t / g:.2f} | {int(c['c10']['rows']):,} | {int(c['g10']['rows']):,} |")
 w("")
+w("Peak backend memory: each join alone in a new backend, its peak resident set (`VmHWM`, with the shared")
+w("buffers it touched) less a new backend's after `SELECT 1`. circletree's cache per call site holds at most 64 MB.")
+w("")
+mem = rows("in_place_mem")
+base = next(num(r["peak_kb"]) for r in mem if r["query"] == "new backend")
+w(f"| dataset | join | g10 peak MB | c10 peak MB |")
+w("|---|---|---:|---:|")
+peaks = {}
+for r in mem:
+    if r["query"] != "new backend":
+        peaks.setdefault((r["dataset"], r["query"]), {})[r["column_"]] = (num(r["peak_kb"]) - base) / 1024
+for (ds, q), c in sorted(peaks.items()):
+    w(f"| {ds} | {q} | {c['g10']:.1f} | {c['c10']:.1f} |")
+w(f"")
+w(f"A new backend's peak: {base / 1024:.1f} MB.")
+w("")
 w("## Scaling")
 w("")
 w("`target/release/examples/scaling n` under `/usr/bin/time`: one synthetic coastline of n vertices")

@@ -27,7 +27,7 @@ fi
 
 need_pkgs=()
 for p in postgresql-15 postgresql-server-dev-15 postgresql-15-postgis-3 libclang-dev clang \
-         build-essential pkg-config libssl-dev sudo; do
+         build-essential pkg-config libssl-dev sudo gdal-bin; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || need_pkgs+=("$p")
 done
 if [ ${#need_pkgs[@]} -gt 0 ]; then

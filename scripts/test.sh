@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs every test: formatting, hadolint on the Dockerfile, cargo-deny, clippy (warnings are errors), the core's tests, the #[pg_test]s
 # (as postgres, in a throw-away cluster), then the pg_regress files against the local PostgreSQL 15
-# with PostGIS, then the round trips of scripts/roundtrip.sh (pg_dump/pg_restore, logical replication) and the crash-recovery test of scripts/crashtest.sh. Any failure fails the run. Sets the machine up first when needed (scripts/setup.sh).
+# with PostGIS, then the round trips of scripts/roundtrip.sh (pg_dump/pg_restore, logical replication), GDAL's ogr2ogr through a view (scripts/clients.sh) and the crash-recovery test of scripts/crashtest.sh. Any failure fails the run. Sets the machine up first when needed (scripts/setup.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/setup.sh
@@ -63,6 +63,9 @@ fi
 
 echo "== round trips: pg_dump/pg_restore and logical replication (two throwaway clusters)"
 bash scripts/roundtrip.sh
+
+echo "== a real client: ogr2ogr reads a view of ct::geometry into a GeoPackage and back"
+bash scripts/clients.sh
 
 echo "== crash recovery: the server killed during inserts (a throwaway cluster)"
 bash scripts/crashtest.sh 10

@@ -5,8 +5,9 @@
 //! ([`circletree_core::access::Prepared`]), keyed by their TOAST pointer (so a cached value is not
 //! even detoasted) or by their bytes, least recently used out first beyond [`CACHE_BYTES`].
 //!
-//! A point is answered here, with PostGIS's own arithmetic; another geometry type goes to
-//! PostGIS's own function on the rebuilt geometry, so the answer is PostGIS's. Mixed SRIDs and a
+//! A point is answered here, with PostGIS's own arithmetic, and whether a (multi)linestring or a
+//! (multi)polygon intersects, with exact predicates as GEOS's; anything else goes to PostGIS's
+//! own function on the rebuilt geometry, so the answer is PostGIS's. Mixed SRIDs and a
 //! negative distance are refused before either, with PostGIS's message as 22023 and a hint.
 
 use crate::datatype::CircleTree;
@@ -185,8 +186,15 @@ unsafe fn answer(
     let site = unsafe { call_site(fcinfo) };
     let prep = unsafe { site.prepared(ct) };
     // SAFETY: a geometry datum is a varlena (a point's is small, never toasted out of line)
-    let g = unsafe { <&[u8]>::from_polymorphic_datum(geom, false, pg_sys::InvalidOid) }
-        .and_then(gserialized::read);
+    let bytes = unsafe { <&[u8]>::from_polymorphic_datum(geom, false, pg_sys::InvalidOid) };
+    // lines and polygons are read only where they are answered here
+    let (g, linework) = match bytes.and_then(|b| match op {
+        Op::Intersects => gserialized::read_linework(b),
+        _ => gserialized::read(b).map(|g| (g, None)),
+    }) {
+        Some((g, lw)) => (Some(g), lw),
+        None => (None, None),
+    };
     if let Some(g) = &g {
         if g.srid != prep.srid {
             mixed_srids(op, &prep, g);
@@ -205,6 +213,9 @@ unsafe fn answer(
         let fast = match (op, g.point) {
             (Op::Distance, _) if g.empty || prep.is_empty() => return None,
             (Op::Intersects, Some(p)) => Some((prep.locate(p) != Location::Outside).into_datum()),
+            (Op::Intersects, None) if linework.is_some() => linework
+                .as_ref()
+                .map(|lw| prep.intersects_linework(lw).into_datum()),
             (Op::Contains, Some(p)) if ct_first => {
                 Some((prep.locate(p) == Location::Inside).into_datum())
             }

@@ -40,7 +40,8 @@ SELECT kind, count(*) AS pairs,
 -- points on the boundary, exactly: every vertex is on it, as PostGIS says
 SELECT count(*) AS vertices, count(*) FILTER (WHERE ct_intersects(ct, pt) AND NOT ct_contains(ct, pt)) AS on_boundary
   FROM pairs WHERE kind = 'vertex';
--- other geometries go to PostGIS's own function on the rebuilt polygon: windows of 2 km, lines
+-- windows of 2 km and lines (ct_intersects answered by circletree; the others by PostGIS's own
+-- function on the rebuilt polygon)
 CREATE TABLE wins AS
 SELECT name, ST_Expand(pt, 1000) AS w, ST_MakeLine(pt, ST_Translate(pt, 3000, 1000)) AS l
   FROM (SELECT name, pt, row_number() OVER (PARTITION BY name) AS k FROM pts WHERE kind = 'random') s WHERE k <= 8;
@@ -53,6 +54,27 @@ SELECT count(*) AS windows,
                            OR ct_distance(w.w, d.ct) IS DISTINCT FROM ST_Distance(w.w, d.g)) AS distance_differ,
        count(*) FILTER (WHERE ct_intersects(d.ct, w.w)) > 0 AND count(*) FILTER (WHERE NOT ct_intersects(d.ct, w.w)) > 0 AS both_answers
   FROM wins w JOIN ipd d USING (name);
+-- lines and polygons touching the rebuilt rings exactly (circletree answers ct_intersects with
+-- exact predicates): windows with a corner on a vertex, the edges themselves, triangles on an
+-- edge, lines from an edge's midpoint, two windows as one MultiPolygon, lines as a MultiLineString
+CREATE TABLE touch AS
+SELECT v.name, s.kind, s.g
+  FROM vtx v JOIN env e USING (name),
+       LATERAL (VALUES
+         ('corner', ST_MakeEnvelope(ST_X(v.geom), ST_Y(v.geom), ST_X(v.geom) + 500, ST_Y(v.geom) + 500, e.srid)),
+         ('corner', ST_MakeEnvelope(ST_X(v.geom) - 300, ST_Y(v.geom) - 300, ST_X(v.geom), ST_Y(v.geom), e.srid)),
+         ('edge', ST_MakeLine(v.geom, v.next)),
+         ('triangle', ST_MakePolygon(ST_MakeLine(ARRAY[v.geom, v.next, ST_Translate(v.geom, 200, 300), v.geom]))),
+         ('midpoint', ST_MakeLine(ST_LineInterpolatePoint(ST_MakeLine(v.geom, v.next), 0.5), ST_Translate(v.geom, 0, 700))),
+         ('multi', ST_Collect(ST_Expand(ST_Translate(v.geom, 2000, 0), 100), ST_Expand(v.next, 1e-3))),
+         ('multi', ST_Collect(ST_MakeLine(ST_Translate(v.geom, 5, 5), ST_Translate(v.geom, 50, 5)), ST_MakeLine(v.geom, ST_Translate(v.next, 0, 1))))) s(kind, g)
+ WHERE v.next IS NOT NULL AND v.path[array_upper(v.path, 1)] % greatest(1, e.n / 20) = 0;
+SELECT kind, count(*) AS pairs,
+       count(*) FILTER (WHERE ct_intersects(d.ct, t.g) IS DISTINCT FROM ST_Intersects(d.g, t.g)
+                           OR ct_intersects(t.g, d.ct) IS DISTINCT FROM ST_Intersects(t.g, d.g)) AS intersects_differ,
+       count(*) FILTER (WHERE ct_intersects(d.ct, ST_Force3D(t.g)) IS DISTINCT FROM ST_Intersects(d.g, t.g)) AS with_z_differ,
+       count(*) FILTER (WHERE ST_Intersects(d.g, t.g)) > 0 AS some_meet
+  FROM touch t JOIN ipd d USING (name) GROUP BY kind ORDER BY kind;
 -- a point in a hole, in a second part, on a hole's ring; NULL and empty values as PostGIS
 CREATE TABLE holed AS SELECT ct_encode_within('MULTIPOLYGON(((0 0,10 0,10 10,0 10,0 0),(2 2,2 8,8 8,8 2,2 2)),((20 0,30 0,30 10,20 10,20 0)))', 0.001) AS ct;
 SELECT p, ct_intersects(ct, p::geometry) AS intersects, ct_contains(ct, p::geometry) AS contains,
@@ -61,6 +83,10 @@ SELECT p, ct_intersects(ct, p::geometry) AS intersects, ct_contains(ct, p::geome
        AND ct_contains(ct, p::geometry) = ST_Contains(ct_decode(ct), p::geometry)
        AND ct_distance(ct, p::geometry) = ST_Distance(ct_decode(ct), p::geometry) AS as_postgis
   FROM holed, unnest(ARRAY['POINT(1 1)', 'POINT(5 5)', 'POINT(2 5)', 'POINT(25 5)', 'POINT(15 5)', 'POINT(0 0)', 'POINT(10 12)']) p;
+SELECT g, ct_intersects(ct, g::geometry) AS intersects, ct_intersects(ct, g::geometry) = ST_Intersects(ct_decode(ct), g::geometry) AS as_postgis
+  FROM holed, unnest(ARRAY['POLYGON((4 4,6 4,6 6,4 6,4 4))', 'POLYGON((1 1,9 1,9 9,1 9,1 1))', 'POLYGON((-1 -1,31 -1,31 11,-1 11,-1 -1),(-0.5 -0.5,30.5 -0.5,30.5 10.5,-0.5 10.5,-0.5 -0.5))',
+                           'LINESTRING(3 3,7 7)', 'LINESTRING(12 5,18 5)', 'LINESTRING(10 5,20 5)', 'MULTILINESTRING((12 5,18 5),(3 3,2 5))',
+                           'POLYGON EMPTY', 'LINESTRING EMPTY', 'MULTIPOLYGON(((4 4,6 4,6 6,4 6,4 4)),((24 4,26 4,26 6,24 6,24 4)))']) g;
 SELECT ct_intersects(NULL::circletree, 'POINT(1 1)'::geometry) IS NULL AS null_ct,
        ct_intersects(ct, NULL::geometry) IS NULL AS null_geom,
        ct_intersects(ct, 'POINT EMPTY'::geometry) = ST_Intersects(ct_decode(ct), 'POINT EMPTY'::geometry) AS empty_point,

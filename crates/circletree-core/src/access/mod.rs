@@ -4,8 +4,10 @@
 //! The answers are PostGIS's on `ct_decode(ct)`: the same rings (the decode at the value's own arc
 //! tolerance) and the same floating-point arithmetic as PostGIS's point-in-polygon test (a
 //! winding number; a point on a ring is on the boundary) and its point-to-segment distance, so a
-//! point exactly on an edge or a vertex gets the answer PostGIS gives.
+//! point exactly on an edge or a vertex gets the answer PostGIS gives. Lines and polygons are
+//! met with exact predicates, as GEOS meets them ([`Prepared::intersects_linework`]).
 
+mod intersects;
 pub mod strips;
 
 use crate::decode;
@@ -44,9 +46,9 @@ impl Prepared {
         let tol = decode::arc_tolerance(ct, None)?;
         decode::check_size(ct, tol)?;
         let parts: Vec<Vec<Strips>> = decode::polygons(ct, tol)
-            .iter()
+            .into_iter()
             .filter(|p| p.first().is_some_and(|s| !s.is_empty()))
-            .map(|p| p.iter().map(|r| Strips::new(r)).collect())
+            .map(|p| p.into_iter().map(Strips::new).collect())
             .collect();
         let bbox = parts
             .iter()
@@ -272,7 +274,7 @@ mod tests {
     use super::*;
     use crate::encode;
 
-    fn prepared(wkt: &str, max_error: f64) -> Prepared {
+    pub(super) fn prepared(wkt: &str, max_error: f64) -> Prepared {
         let g: geo_types::Geometry<f64> = wkt::TryFromWkt::try_from_wkt_str(wkt).unwrap();
         let mut wkb = Vec::new();
         ::wkb::writer::write_geometry(&mut wkb, &g, &Default::default()).unwrap();
@@ -319,10 +321,8 @@ mod tests {
         assert!(!p.dwithin([1e6, 5.0], 10.0));
     }
 
-    #[test]
-    fn the_edge_index_gives_the_full_scan_s_answers() {
-        // A many-sided star: every query compared with a scan of every edge.
-        let n = 400;
+    /// A star of `n` points, 1000 and 600 from the origin in turn, encoded within 1.
+    pub(super) fn star(n: usize) -> Prepared {
         let ring: Vec<String> = (0..=n)
             .map(|i| {
                 let t = (i % n) as f64 / n as f64 * std::f64::consts::TAU;
@@ -330,7 +330,13 @@ mod tests {
                 format!("{} {}", r * t.cos(), r * t.sin())
             })
             .collect();
-        let p = prepared(&format!("POLYGON(({}))", ring.join(",")), 1.0);
+        prepared(&format!("POLYGON(({}))", ring.join(",")), 1.0)
+    }
+
+    #[test]
+    fn the_edge_index_gives_the_full_scan_s_answers() {
+        // A many-sided star: every query compared with a scan of every edge.
+        let p = star(400);
         let mut u = crate::test_uniform(3);
         for _ in 0..3000 {
             let q = [2400.0 * u() - 1200.0, 2400.0 * u() - 1200.0];

@@ -11,7 +11,8 @@ pub struct Strips {
     pub pts: Vec<Pt>,
     /// The ring's box: `[xmin, ymin, xmax, ymax]`.
     pub bbox: [f64; 4],
-    height: f64,
+    /// Strips per unit of y.
+    per_unit: f64,
     /// Edge `i` (from `pts[i]` to `pts[i + 1]`) is listed in every strip its y-range meets:
     /// strip `s` holds `edges[starts[s]..starts[s + 1]]`.
     starts: Vec<u32>,
@@ -23,8 +24,8 @@ const EDGES_PER_STRIP: usize = 4;
 
 impl Strips {
     /// Index an open ring (its closing edge is added).
-    pub fn new(ring: &[Pt]) -> Strips {
-        let mut pts = ring.to_vec();
+    pub fn new(ring: Vec<Pt>) -> Strips {
+        let mut pts = ring;
         if let Some(&first) = pts.first() {
             pts.push(first);
         }
@@ -43,21 +44,26 @@ impl Strips {
         let nedges = pts.len().saturating_sub(1);
         let nstrips = (nedges / EDGES_PER_STRIP).clamp(1, 1 << 16);
         let span = bbox[3] - bbox[1];
-        let height = if span > 0.0 {
-            span / nstrips as f64
+        let per_unit = if span > 0.0 {
+            nstrips as f64 / span
         } else {
             1.0
         };
         let mut s = Strips {
             pts,
             bbox,
-            height,
+            per_unit,
             starts: vec![0; nstrips + 1],
             edges: Vec::new(),
         };
-        // Counting sort: count, prefix sums, fill.
+        // Each point's strip once, then a counting sort of the edges: count, prefix sums, fill.
+        let at: Vec<u32> = s.pts.iter().map(|p| s.strip(p[1]) as u32).collect();
+        let span_of = |i: usize| {
+            let (a, b) = (at[i], at[i + 1]);
+            (a.min(b) as usize, a.max(b) as usize)
+        };
         for i in 0..nedges {
-            let (a, b) = s.edge_strips(i);
+            let (a, b) = span_of(i);
             for k in a..=b {
                 s.starts[k + 1] += 1;
             }
@@ -68,7 +74,7 @@ impl Strips {
         let mut next = s.starts.clone();
         s.edges = vec![0; s.starts[nstrips] as usize];
         for i in 0..nedges {
-            let (a, b) = s.edge_strips(i);
+            let (a, b) = span_of(i);
             for slot in &mut next[a..=b] {
                 s.edges[*slot as usize] = i as u32;
                 *slot += 1;
@@ -81,20 +87,16 @@ impl Strips {
         self.starts.len() - 1
     }
 
-    /// The strip of a y: monotone in y (one subtraction and one division by a positive constant),
-    /// so an edge whose y-range holds y is listed in y's strip.
+    /// The strip of a y: monotone in y (one subtraction and one multiplication by a positive
+    /// constant, each rounded monotonically), so an edge whose y-range holds y is listed in y's
+    /// strip.
     fn strip(&self, y: f64) -> usize {
-        let k = (y - self.bbox[1]) / self.height;
+        let k = (y - self.bbox[1]) * self.per_unit;
         if k.is_nan() || k < 0.0 {
             0
         } else {
             (k as usize).min(self.nstrips() - 1)
         }
-    }
-
-    fn edge_strips(&self, i: usize) -> (usize, usize) {
-        let (a, b) = (self.pts[i][1], self.pts[i + 1][1]);
-        (self.strip(a.min(b)), self.strip(a.max(b)))
     }
 
     /// The edges whose y-range may meet `[y0, y1]`, each strip's list in turn (an edge crossing
@@ -136,7 +138,7 @@ mod tests {
                 [r * t.cos(), r * t.sin()]
             })
             .collect();
-        let s = Strips::new(&ring);
+        let s = Strips::new(ring);
         assert!(s.nstrips() > 50);
         for _ in 0..2000 {
             let y = -140.0 + 280.0 * u();

@@ -1,13 +1,16 @@
 //! PostGIS's own geometry bytes (`GSERIALIZED`, versions 1 and 2, as `geometry` datums hold them,
 //! after the varlena header), read in place for what the predicates need: the SRID, the type, a
-//! point's coordinates and the box. Anything this reader does not know is `None`, and the caller
-//! asks PostGIS instead.
+//! point's coordinates and the box, and on request the lines or polygons themselves
+//! ([`read_linework`]). Anything this reader does not know is `None`, and the caller asks PostGIS
+//! instead.
 //!
 //! The layout (PostGIS's `gserialized.txt`), after the varlena header: the SRID in 3 bytes (21
 //! bits, signed); a flags byte (Z 0x01, M 0x02, box 0x04, geodetic 0x08; in version 2, bit 0x40
 //! set, 0x10 says 8 bytes of extended flags follow); the box as floats (min and max of each
 //! dimension, 6 floats when geodetic) when flagged; then the geometry, native byte order: a
 //! `u32` type and a `u32` count, a polygon's ring counts padded to 8 bytes, the doubles.
+
+use super::Pt;
 
 /// What the reader found.
 #[derive(Clone, Debug, PartialEq)]
@@ -27,10 +30,30 @@ pub struct Serialized {
     pub geodetic: bool,
 }
 
+/// A (multi)linestring's lines or a (multi)polygon's polygons (each its shell, then its holes),
+/// x and y only, rings closed as stored.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Linework {
+    /// LineString or MultiLineString.
+    Lines(Vec<Vec<Pt>>),
+    /// Polygon or MultiPolygon.
+    Polygons(Vec<Vec<Vec<Pt>>>),
+}
+
 const POINT: u32 = 1;
 
 /// Read a geometry datum's bytes (after its varlena header); `None` when they are not a geometry this reader knows.
 pub fn read(bytes: &[u8]) -> Option<Serialized> {
+    read_as(bytes, false).map(|(s, _)| s)
+}
+
+/// As [`read`], with the lines or polygons when the geometry is a (multi)linestring or a
+/// (multi)polygon (`None` for any other type).
+pub fn read_linework(bytes: &[u8]) -> Option<(Serialized, Option<Linework>)> {
+    read_as(bytes, true)
+}
+
+fn read_as(bytes: &[u8], collect: bool) -> Option<(Serialized, Option<Linework>)> {
     let head = bytes.get(..4)?;
     let raw = (i32::from(head[0]) << 16) | (i32::from(head[1]) << 8) | i32::from(head[2]);
     let srid = (raw << 11) >> 11;
@@ -70,6 +93,9 @@ pub fn read(bytes: &[u8]) -> Option<Serialized> {
             f64::NEG_INFINITY,
         ],
         n: 0,
+        collect,
+        lines: Vec::new(),
+        polygons: Vec::new(),
     };
     let kind = r.u32()?;
     let mut point = None;
@@ -86,14 +112,20 @@ pub fn read(bytes: &[u8]) -> Option<Serialized> {
     r.geometry(0)?;
     let empty = r.n == 0;
     let coords_box = (!empty).then_some(r.bbox);
-    Some(Serialized {
+    let linework = match kind {
+        2 | 5 if collect => Some(Linework::Lines(r.lines)),
+        3 | 6 if collect => Some(Linework::Polygons(r.polygons)),
+        _ => None,
+    };
+    let s = Serialized {
         srid,
         kind,
         empty,
         point,
         bbox: if empty { None } else { bbox.or(coords_box) },
         geodetic,
-    })
+    };
+    Some((s, linework))
 }
 
 struct Reader<'a> {
@@ -102,6 +134,9 @@ struct Reader<'a> {
     dims: usize,
     bbox: [f64; 4],
     n: usize,
+    collect: bool,
+    lines: Vec<Vec<Pt>>,
+    polygons: Vec<Vec<Vec<Pt>>>,
 }
 
 impl Reader<'_> {
@@ -116,9 +151,19 @@ impl Reader<'_> {
         Some(f64::from_ne_bytes(b.try_into().ok()?))
     }
 
-    fn points(&mut self, n: u32) -> Option<()> {
+    fn points(&mut self, n: u32) -> Option<Vec<Pt>> {
+        let mut out = Vec::new();
+        if self.collect {
+            // the count is the datum's: bounded by its length before anything is reserved
+            let bytes = (n as usize).checked_mul(8 * self.dims)?;
+            self.bytes.get(self.at..self.at.checked_add(bytes)?)?;
+            out.reserve_exact(n as usize);
+        }
         for _ in 0..n {
             let (x, y) = (self.f64_at(self.at)?, self.f64_at(self.at + 8)?);
+            if self.collect {
+                out.push([x, y]);
+            }
             self.bbox = [
                 self.bbox[0].min(x),
                 self.bbox[1].min(y),
@@ -128,7 +173,7 @@ impl Reader<'_> {
             self.at += 8 * self.dims;
             self.n += 1;
         }
-        Some(())
+        Some(out)
     }
 
     fn geometry(&mut self, depth: usize) -> Option<()> {
@@ -138,13 +183,27 @@ impl Reader<'_> {
         let kind = self.u32()?;
         let count = self.u32()?;
         match kind {
-            1 | 2 | 8 | 14 => self.points(count),
+            2 => {
+                let line = self.points(count)?;
+                if self.collect {
+                    self.lines.push(line);
+                }
+                Some(())
+            }
+            1 | 8 | 14 => self.points(count).map(drop),
             3 => {
                 let counts: Vec<u32> = (0..count).map(|_| self.u32()).collect::<Option<_>>()?;
                 if count % 2 == 1 {
                     self.at += 4;
                 }
-                counts.into_iter().try_for_each(|n| self.points(n))
+                let rings: Vec<Vec<Pt>> = counts
+                    .into_iter()
+                    .map(|n| self.points(n))
+                    .collect::<Option<_>>()?;
+                if self.collect {
+                    self.polygons.push(rings);
+                }
+                Some(())
             }
             4..=7 | 9..=13 | 15 => (0..count).try_for_each(|_| self.geometry(depth + 1)),
             _ => None,
@@ -205,5 +264,32 @@ mod tests {
         assert_eq!((mp.point, mp.bbox), (None, Some([-5.0, 6.0, 5.0, 7.0])));
         assert!(read(&datum(0, 0x40, &words(&[99, 0], &[]))).is_none());
         assert!(read(&datum(0, 0x40, &words(&[3, 5], &[]))).is_none());
+    }
+
+    #[test]
+    fn lines_and_polygons_are_read_on_request() {
+        // a 3-D linestring: z is dropped
+        let l = datum(0, 0x41, &words(&[2, 2], &[0.0, 1.0, 9.0, 2.0, 3.0, 9.0]));
+        let (s, lw) = read_linework(&l).unwrap();
+        assert_eq!(s.kind, 2);
+        assert_eq!(
+            lw,
+            Some(Linework::Lines(vec![vec![[0.0, 1.0], [2.0, 3.0]]]))
+        );
+        // a multipolygon of one polygon with two rings
+        let mut body = words(&[6, 1, 3, 2, 4, 4], &[]);
+        body.extend(words(&[], &[0.0, 0.0, 4.0, 0.0, 0.0, 4.0, 0.0, 0.0]));
+        body.extend(words(&[], &[1.0, 1.0, 2.0, 1.0, 1.0, 2.0, 1.0, 1.0]));
+        let (_, lw) = read_linework(&datum(0, 0x40, &body)).unwrap();
+        let Some(Linework::Polygons(p)) = lw else {
+            panic!("{lw:?}")
+        };
+        assert_eq!((p.len(), p[0].len(), p[0][1][1]), (1, 2, [2.0, 1.0]));
+        // a point has none; a count larger than the bytes is refused
+        let (_, none) = read_linework(&datum(0, 0x40, &words(&[1, 1], &[1.0, 2.0]))).unwrap();
+        assert_eq!(none, None);
+        assert!(read_linework(&datum(0, 0x40, &words(&[2, 1 << 30], &[1.0, 2.0]))).is_none());
+        // read() alone collects nothing and agrees on the rest
+        assert_eq!(read(&l).unwrap(), s);
     }
 }
