@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Scale-out check (issue 9 item 7), by hand, not in CI: circletree in a Citus distributed table.
+# Scale-out check, by hand, not in CI: circletree in a Citus distributed table, and joins on it.
 # Needs Citus built and installed into the system PostgreSQL 15 (it is not in Debian's packages;
 # docs/RELIABILITY.md says how it was built here) and circletree installed. Three throwaway clusters on
 # this machine: a coordinator and two workers. The sample polygons go into a distributed table; a
@@ -80,4 +80,37 @@ SELECT citus_move_shard_placement(s.shardid, 'localhost', p.nodeport, 'localhost
   FROM pg_dist_shard s JOIN pg_dist_shard_placement p USING (shardid)
  WHERE s.logicalrelid = 'coast'::regclass ORDER BY s.shardid LIMIT 1;
 SELECT md5(string_agg(ct::bytea::text || paper::bytea::text, ',' ORDER BY name)) = :'before' AS same_after_move FROM coast_ct;
+\echo == joins on the workers with the native GiST index (EPSG:3857, as bench/in_place.sql), against the local answers
+CREATE TABLE ip_ct(name text PRIMARY KEY, ct circletree);
+SELECT create_distributed_table('ip_ct', 'name', colocate_with := 'coast');
+INSERT INTO ip_ct SELECT name, ct_encode_within(ST_Transform(geom, 3857), 10) FROM coast;
+CREATE INDEX ip_ct_gist ON ip_ct USING gist (ct);
+SELECT setseed(0.5);
+CREATE TABLE ip_pts(id int PRIMARY KEY, pt geometry);
+INSERT INTO ip_pts
+SELECT row_number() OVER (), ST_SetSRID(ST_MakePoint(ST_XMin(e) + random() * (ST_XMax(e) - ST_XMin(e)),
+                                                     ST_YMin(e) + random() * (ST_YMax(e) - ST_YMin(e))), 3857)
+  FROM (SELECT ct_envelope(ct) AS e FROM ip_ct ORDER BY name) s, generate_series(1, 200);
+SELECT create_reference_table('ip_pts');
+CREATE TABLE ip_win(id int PRIMARY KEY, w geometry);
+INSERT INTO ip_win SELECT id, ST_Expand(pt, 1000) FROM ip_pts WHERE id % 5 = 0;
+SELECT create_reference_table('ip_win');
+-- the same tables on the coordinator alone
+CREATE TABLE l_ct AS SELECT * FROM ip_ct;
+CREATE INDEX ON l_ct USING gist (ct);
+CREATE TABLE l_pts AS SELECT * FROM ip_pts;
+CREATE TABLE l_win AS SELECT * FROM ip_win;
+ANALYZE l_ct; ANALYZE l_pts; ANALYZE l_win;
+EXPLAIN (COSTS off) SELECT g.name, p.id FROM ip_pts p JOIN ip_ct g ON ct_intersects(g.ct, p.pt);
+SELECT 'points in polygons' AS join_, d.n AS distributed_rows, l.n AS local_rows, d.h = l.h AS same_pairs
+  FROM (SELECT count(*) n, md5(string_agg(g.name || '/' || p.id, ',' ORDER BY g.name, p.id)) h FROM ip_pts p JOIN ip_ct g ON ct_intersects(g.ct, p.pt)) d,
+       (SELECT count(*) n, md5(string_agg(g.name || '/' || p.id, ',' ORDER BY g.name, p.id)) h FROM l_pts p JOIN l_ct g ON ct_intersects(g.ct, p.pt)) l
+UNION ALL
+SELECT 'points within 500 m', d.n, l.n, d.h = l.h
+  FROM (SELECT count(*) n, md5(string_agg(g.name || '/' || p.id, ',' ORDER BY g.name, p.id)) h FROM ip_pts p JOIN ip_ct g ON ct_dwithin(g.ct, p.pt, 500)) d,
+       (SELECT count(*) n, md5(string_agg(g.name || '/' || p.id, ',' ORDER BY g.name, p.id)) h FROM l_pts p JOIN l_ct g ON ct_dwithin(g.ct, p.pt, 500)) l
+UNION ALL
+SELECT 'windows of 2 km', d.n, l.n, d.h = l.h
+  FROM (SELECT count(*) n, md5(string_agg(g.name || '/' || w.id, ',' ORDER BY g.name, w.id)) h FROM ip_win w JOIN ip_ct g ON ct_intersects(g.ct, w.w)) d,
+       (SELECT count(*) n, md5(string_agg(g.name || '/' || w.id, ',' ORDER BY g.name, w.id)) h FROM l_win w JOIN l_ct g ON ct_intersects(g.ct, w.w)) l;
 SQL

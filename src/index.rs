@@ -5,9 +5,9 @@
 //! `ct_intersects`, `ct_contains` and `ct_dwithin` into an index condition with no `&&` written.
 //!
 //! A circletree's box is its envelope (`ct_envelope`: the original's box widened by max_error,
-//! which holds the rebuilt polygon); a geometry's is the one PostGIS's own `&&` uses (its stored
-//! float box, rounded outwards, else its coordinates'). An empty value's key is NaN: the index
-//! hands it to the operator, which says it meets nothing.
+//! which holds the rebuilt polygon), a geometry's its stored box or its coordinates', each rounded
+//! outwards to floats as PostGIS's own `&&` rounds them, so `ct && g` is `ct_envelope(ct) && g`.
+//! An empty value's key is NaN: the index hands it to the operator, which says it meets nothing.
 
 use crate::datatype::CircleTree;
 use crate::error::OrRaise;
@@ -30,7 +30,10 @@ unsafe fn ct_box(d: pg_sys::Datum) -> Option<Bbox> {
     // SAFETY: a plain varlena; detoasted
     let bytes = unsafe { <&[u8]>::from_polymorphic_datum(d, false, pg_sys::InvalidOid) }
         .unwrap_or_default();
-    Value::envelope(bytes).or_raise().1
+    Value::envelope(bytes)
+        .or_raise()
+        .1
+        .map(gserialized::float_box)
 }
 
 /// The box `&&` takes of a geometry datum (`None`: empty).
@@ -42,7 +45,7 @@ unsafe fn geom_box(d: pg_sys::Datum) -> Option<Bbox> {
     let bytes = unsafe { <&[u8]>::from_polymorphic_datum(d, false, pg_sys::InvalidOid) }
         .unwrap_or_default();
     match gserialized::read(bytes) {
-        Some(g) => g.bbox,
+        Some(g) => g.bbox.map(gserialized::float_box),
         None => pgrx::error!("circletree: the geometry's bytes could not be read"),
     }
 }

@@ -136,6 +136,11 @@ SELECT count(*) FILTER (WHERE (ip.ct && p.pt) IS DISTINCT FROM (ct_envelope(ip.c
        count(*) FILTER (WHERE (p.pt && ip.ct) IS DISTINCT FROM (ip.ct && p.pt)) AS commuted_differ,
        count(*) FILTER (WHERE ip.ct && p.pt) > 0 AS some
   FROM probe p, ip;
+-- boxes are compared as PostGIS compares them, rounded outwards to floats: a point a millimetre
+-- beyond the envelope at 500 km is within its float box (1/32 m there), 10 cm beyond is not
+SELECT d AS beyond, ct && p AS overlaps, ct_envelope(ct) && p AS postgis, p && ct AS commuted
+  FROM (SELECT ct_encode_within('SRID=32633;POLYGON((500000 6000000,500100 6000000,500100 6000100,500000 6000000))'::geometry, 1) AS ct) v,
+       LATERAL (SELECT d, ST_SetSRID(ST_MakePoint(ST_XMax(ct_envelope(ct)) + d, 6000050), 32633) AS p FROM unnest(ARRAY[0, 0.001, 0.01, 0.1]) d) s;
 -- equality the planner can use: DISTINCT, GROUP BY, UNION, a hash join, a hash index look-up
 -- (byte order and PostgreSQL's hash of the bytes; a btree index, like bytea's, takes only values
 -- under about 2.7 kB)
@@ -165,4 +170,4 @@ SELECT count(*) FILTER (WHERE ST_AsEWKB(ct::geometry) = ST_AsEWKB(ct_decode(ct))
        count(*) AS polygons
   FROM ip;
 DROP VIEW pairs;
-DROP TABLE ip, ipd, env, vtx, pts, wins, holed, probe, by_index;
+DROP TABLE ip, ipd, env, vtx, pts, wins, touch, holed, probe, by_index;

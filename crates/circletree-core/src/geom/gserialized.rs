@@ -23,8 +23,9 @@ pub struct Serialized {
     pub empty: bool,
     /// The point's x and y when it is a Point.
     pub point: Option<[f64; 2]>,
-    /// The box `[xmin, ymin, xmax, ymax]` as `&&` sees it: the stored float box when there is
-    /// one (rounded outwards by PostGIS), else the coordinates' own; `None` when empty.
+    /// The box `[xmin, ymin, xmax, ymax]`: the stored float box when there is one (rounded
+    /// outwards by PostGIS), else the coordinates' own; `None` when empty. [`float_box`] of it
+    /// is what PostGIS's `&&` compares.
     pub bbox: Option<[f64; 4]>,
     /// Geodetic (a geography).
     pub geodetic: bool,
@@ -41,6 +42,20 @@ pub enum Linework {
 }
 
 const POINT: u32 = 1;
+
+/// A box rounded outwards to floats, as PostGIS's `&&` sees every box (its `BOX2DF`: the
+/// largest float not above each minimum, the smallest not below each maximum).
+pub fn float_box(b: [f64; 4]) -> [f64; 4] {
+    let down = |d: f64| {
+        let f = d as f32;
+        f64::from(if f64::from(f) > d { f.next_down() } else { f })
+    };
+    let up = |d: f64| {
+        let f = d as f32;
+        f64::from(if f64::from(f) < d { f.next_up() } else { f })
+    };
+    [down(b[0]), down(b[1]), up(b[2]), up(b[3])]
+}
 
 /// Read a geometry datum's bytes (after its varlena header); `None` when they are not a geometry this reader knows.
 pub fn read(bytes: &[u8]) -> Option<Serialized> {
@@ -291,5 +306,15 @@ mod tests {
         assert!(read_linework(&datum(0, 0x40, &words(&[2, 1 << 30], &[1.0, 2.0]))).is_none());
         // read() alone collects nothing and agrees on the rest
         assert_eq!(read(&l).unwrap(), s);
+    }
+
+    #[test]
+    fn boxes_round_outwards_to_floats() {
+        let b = float_box([500101.001, -0.1, 500101.001, 6000050.0]);
+        assert!(b[0] < 500101.001 && b[2] > 500101.001);
+        assert_eq!((b[0], b[2]), (500101.0, 500101.03125)); // floats 1/32 apart there
+        assert!(b[1] < -0.1 && b[1] as f32 as f64 == b[1]);
+        assert_eq!(b[3], 6000050.0); // a float already
+        assert!(float_box([f64::NAN; 4])[0].is_nan());
     }
 }
