@@ -27,6 +27,9 @@ done
 psql -X -q -v ON_ERROR_STOP=1 -d "$db" -f bench/in_place.sql
 psql -X -q -v ON_ERROR_STOP=1 -d "$db" -c "\\copy ip_times TO STDOUT WITH (FORMAT csv, HEADER true)" >"$out/in_place.csv"
 psql -X -q -v ON_ERROR_STOP=1 -d "$db" -c "\\copy ip_mem TO STDOUT WITH (FORMAT csv, HEADER true)" >"$out/in_place_mem.csv"
+echo "== many small polygons beside the large ones (bench/small.sql)"
+bash scripts/load.sh circletree_bench_small public=tests/data/polygons.tsv.gz holdout=tests/data/holdout.tsv.gz small=tests/data/small.tsv.gz
+psql -X -q -v ON_ERROR_STOP=1 -d circletree_bench_small -f bench/small.sql | tee "$out/small.txt"
 echo "== SQL benchmarks took $(($(date +%s) - start)) s"
 
 echo "== format v1 against v2, where the bytes go (core example bytes_breakdown)"

@@ -48,6 +48,21 @@ impl Decimal {
 
     /// The nearest `f64`.
     pub fn to_f64(self) -> f64 {
+        // Clinger's fast path: a mantissa and a power of ten both exact in f64, one correctly
+        // rounded operation, so the nearest f64 (what parsing gives); else parse the digits.
+        const POW10: [f64; 23] = [
+            1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+            1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+        ];
+        let e = usize::from(self.exp.unsigned_abs());
+        if self.mantissa.unsigned_abs() < 1 << 53 && e < POW10.len() {
+            let m = self.mantissa as f64;
+            return if self.exp < 0 {
+                m / POW10[e]
+            } else {
+                m * POW10[e]
+            };
+        }
         format!("{}e{}", self.mantissa, self.exp)
             .parse()
             .unwrap_or(f64::NAN)
@@ -205,6 +220,20 @@ mod tests {
             let d = Decimal::from_f64(v).unwrap();
             prop_assert_eq!(d.to_f64(), v);
             prop_assert_eq!(Decimal::parse(&d.to_string()), Some(d));
+        }
+    }
+
+    #[test]
+    fn the_fast_path_reads_as_parsing_does() {
+        let mut u = crate::test_uniform(5);
+        for _ in 0..20000 {
+            let m = ((u() - 0.5) * 2f64.powi(54)) as i64 >> (u() * 50.0) as u32;
+            let exp = (u() * 60.0) as i32 - 30;
+            let Some(d) = Decimal::new(m, exp) else {
+                continue;
+            };
+            let parsed: f64 = format!("{}e{}", d.mantissa, d.exp).parse().unwrap();
+            assert_eq!(d.to_f64().to_bits(), parsed.to_bits(), "{d:?}");
         }
     }
 }
