@@ -141,6 +141,7 @@ fn _ct_gist_consistent(
         // operator itself decides (recheck), which never holds for an empty value.
         let unknown = key.iter().any(|v| v.is_nan());
         if let Some(r) = recheck.unwrap() {
+            // ok: Internal::unwrap is an Option, no panic
             *r.cast_mut_ptr::<bool>() = unknown;
         }
         let q = if subtype == circletree_oid(fcinfo) {
