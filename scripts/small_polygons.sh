@@ -21,7 +21,7 @@ esac
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 for r in $regions; do
-  gmt coast -R"$r" -Df -W -M -A1 | python3 -c '
+  (cd "$tmp" && gmt coast -R"$r" -Df -W -M -A1) | python3 -c '
 import sys
 region = sys.argv[1].replace("/", "_")
 segs = []
