@@ -31,7 +31,9 @@ pub use parallel::set_threads;
 /// Not a stable API: the steps the benches of this repository time one by one.
 #[doc(hidden)]
 pub mod internals {
+    pub use crate::encode::min_points::keep as min_points;
     pub use crate::encode::paper::{douglas_peucker, filter, medial};
+    pub use crate::format::coder::{class, Bit, IntModel, Meter, Sink};
 }
 
 /// Tests' reproducible numbers in `[0, 1)` from a seed (Knuth's MMIX linear congruential

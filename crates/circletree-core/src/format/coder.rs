@@ -228,6 +228,11 @@ impl Default for Meter {
 }
 
 impl Meter {
+    /// What the symbols so far cost, in bits.
+    pub fn bits(&self) -> f64 {
+        self.cost as f64 / 65536.0
+    }
+
     /// Bounds on the length of the [`Writer`]'s finished stream for the same symbols, in bytes.
     /// The coder's range is at least 2^24 before each decision, so its truncated split loses at
     /// most 2^-12 of the range (under 0.00036 bit) and gains no more; the table is rounded to
