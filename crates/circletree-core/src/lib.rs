@@ -28,7 +28,8 @@ mod parallel;
 pub use error::{Error, Result};
 pub use parallel::set_threads;
 
-/// Not a stable API: the steps the benches of this repository time one by one.
+/// Not a stable API: the steps the benches of this repository time one by one, and the pieces its
+/// measurement examples price designs with (`examples/tokens.rs`, `examples/levels.rs`).
 #[doc(hidden)]
 pub mod internals {
     pub use crate::encode::min_points::keep as min_points;
